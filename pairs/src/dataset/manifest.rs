@@ -1,0 +1,127 @@
+//! `manifest.json`: what made a dataset (version, config, seed), its counts, and a checksum of
+//! every file.
+
+use std::collections::BTreeMap;
+use std::fs::File;
+use std::io::{BufReader, Read};
+use std::path::Path;
+
+use serde::{Deserialize, Serialize};
+use sha2::{Digest, Sha256};
+
+use crate::error::DatasetError;
+
+/// Name of the manifest file in a dataset folder.
+pub const MANIFEST_FILE: &str = "manifest.json";
+/// Value of the manifest's `format` field.
+pub const FORMAT_NAME: &str = "part-induction-dataset";
+/// Version of the dataset folder layout.
+pub const FORMAT_VERSION: u32 = 1;
+
+/// Size and sha256 of one file of a dataset.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+pub struct FileEntry {
+    /// Size in bytes.
+    pub bytes: u64,
+    /// Lower-case hex sha256 of the contents.
+    pub sha256: String,
+}
+
+/// Counts of what a dataset holds.
+#[derive(Debug, Clone, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Counts {
+    /// Number of pairs.
+    pub pairs: u64,
+    /// Number of distinct objects.
+    pub objects: u64,
+    /// Pairs per category.
+    pub categories: BTreeMap<String, u64>,
+    /// Pairs per kind (`SF2F`, ...).
+    pub kinds: BTreeMap<String, u64>,
+}
+
+/// What the writer needs to know that is not in the pairs: who made them and how.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct DatasetOrigin {
+    /// Version of the generator.
+    pub generator_version: String,
+    /// Dataset seed.
+    pub seed: u64,
+    /// The full configuration that made the dataset, as JSON.
+    pub config: serde_json::Value,
+}
+
+/// The contents of `manifest.json`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Manifest {
+    /// Always [`FORMAT_NAME`].
+    pub format: String,
+    /// Layout version, [`FORMAT_VERSION`].
+    pub format_version: u32,
+    /// Generator version, seed and config.
+    #[serde(flatten)]
+    pub origin: DatasetOrigin,
+    /// What the dataset holds.
+    pub counts: Counts,
+    /// Size and checksum of every other file, by path relative to the dataset folder.
+    pub files: BTreeMap<String, FileEntry>,
+}
+
+impl Manifest {
+    /// Reads and checks the manifest of a dataset folder.
+    pub fn read(dir: &Path) -> Result<Self, DatasetError> {
+        let path = dir.join(MANIFEST_FILE);
+        if !path.is_file() {
+            return Err(DatasetError::MissingManifest { dir: dir.into() });
+        }
+        let text = std::fs::read(&path).map_err(DatasetError::io(&path))?;
+        let manifest: Self = serde_json::from_slice(&text)
+            .map_err(|e| DatasetError::Manifest { path: path.clone(), reason: e.to_string() })?;
+        if manifest.format != FORMAT_NAME || manifest.format_version != FORMAT_VERSION {
+            let reason = format!(
+                "format {:?} version {} (expected {FORMAT_NAME:?} version {FORMAT_VERSION})",
+                manifest.format, manifest.format_version
+            );
+            return Err(DatasetError::Manifest { path, reason });
+        }
+        Ok(manifest)
+    }
+
+    /// Checks the size and sha256 of every file the manifest lists.
+    pub fn verify(&self, dir: &Path) -> Result<(), DatasetError> {
+        for (name, expected) in &self.files {
+            let path = dir.join(name);
+            let found = FileEntry::of(&path)?;
+            if found.bytes != expected.bytes {
+                let reason = format!("{} bytes, manifest says {}", found.bytes, expected.bytes);
+                return Err(DatasetError::Checksum { path, reason });
+            }
+            if found.sha256 != expected.sha256 {
+                let reason = "sha256 differs from the manifest".to_string();
+                return Err(DatasetError::Checksum { path, reason });
+            }
+        }
+        Ok(())
+    }
+}
+
+impl FileEntry {
+    /// Size and sha256 of a file, read in a stream.
+    pub fn of(path: &Path) -> Result<Self, DatasetError> {
+        let file = File::open(path).map_err(DatasetError::io(path))?;
+        let mut reader = BufReader::with_capacity(1 << 16, file);
+        let mut hasher = Sha256::new();
+        let mut buf = vec![0u8; 1 << 16];
+        let mut bytes = 0u64;
+        loop {
+            let n = reader.read(&mut buf).map_err(DatasetError::io(path))?;
+            if n == 0 {
+                break;
+            }
+            hasher.update(&buf[..n]);
+            bytes += n as u64;
+        }
+        let sha256 = hasher.finalize().iter().map(|b| format!("{b:02x}")).collect();
+        Ok(Self { bytes, sha256 })
+    }
+}

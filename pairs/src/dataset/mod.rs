@@ -1,0 +1,14 @@
+//! The dataset folder format (docs/FORMAT.md): `pairs.mcap`, `index.csv`, `manifest.json`.
+
+pub mod index;
+pub mod manifest;
+pub mod reader;
+pub mod schema;
+pub mod viz;
+pub mod writer;
+
+pub use index::IndexRow;
+pub use manifest::{Counts, DatasetOrigin, FileEntry, Manifest, MANIFEST_FILE};
+pub use reader::{Dataset, PairReader};
+pub use schema::{decode_record, encode_pair, PairRecord};
+pub use writer::{DatasetWriter, INDEX_FILE, PAIRS_FILE};

@@ -1,0 +1,181 @@
+//! Streaming dataset reader: pairs come one at a time from a forward pass over `pairs.mcap`,
+//! so a dataset of any size is read in bounded memory.
+
+use std::fs::File;
+use std::io::{BufReader, ErrorKind, Read};
+use std::path::{Path, PathBuf};
+
+use mcap::records::{op, Record};
+use mcap::sans_io::{LinearReadEvent, LinearReader, LinearReaderOptions};
+
+use super::manifest::Manifest;
+use super::schema::{decode_record, PAIR_ENCODING, PAIR_SCHEMA, PAIR_TOPIC, SCHEMA_VERSION};
+use super::writer::PAIRS_FILE;
+use crate::error::DatasetError;
+use crate::pair::Pair;
+
+/// Largest record the reader buffers; a corrupt length field beyond it is an error, not an
+/// allocation.
+const RECORD_LIMIT: usize = 256 << 20;
+
+/// A dataset folder opened for reading: its manifest and a way to stream its pairs.
+#[derive(Debug, Clone)]
+pub struct Dataset {
+    dir: PathBuf,
+    manifest: Manifest,
+}
+
+impl Dataset {
+    /// Opens a dataset folder; fails if it has no valid `manifest.json`.
+    pub fn open(dir: impl AsRef<Path>) -> Result<Self, DatasetError> {
+        let dir = dir.as_ref();
+        Ok(Self { dir: dir.into(), manifest: Manifest::read(dir)? })
+    }
+
+    /// The dataset's manifest.
+    pub fn manifest(&self) -> &Manifest {
+        &self.manifest
+    }
+
+    /// The dataset folder.
+    pub fn dir(&self) -> &Path {
+        &self.dir
+    }
+
+    /// Checks every file against the sizes and checksums of the manifest.
+    pub fn verify(&self) -> Result<(), DatasetError> {
+        self.manifest.verify(&self.dir)
+    }
+
+    /// Streams the pairs in file order; the stream ends with an error if the file holds fewer
+    /// pairs than the manifest announces.
+    pub fn pairs(&self) -> Result<PairReader<BufReader<File>>, DatasetError> {
+        let mut reader = PairReader::open(self.dir.join(PAIRS_FILE))?;
+        reader.expected = Some(self.manifest.counts.pairs);
+        Ok(reader)
+    }
+}
+
+/// An iterator over the pairs of one `pairs.mcap` stream, validating each.
+pub struct PairReader<R> {
+    path: PathBuf,
+    source: R,
+    reader: LinearReader,
+    pair_channel: Option<u16>,
+    expected: Option<u64>,
+    count: u64,
+    done: bool,
+}
+
+impl PairReader<BufReader<File>> {
+    /// Opens a `pairs.mcap` file on its own (no manifest, so no count check).
+    pub fn open(path: impl AsRef<Path>) -> Result<Self, DatasetError> {
+        let path = path.as_ref();
+        let file = File::open(path).map_err(DatasetError::io(path))?;
+        Ok(Self::new(path, BufReader::with_capacity(1 << 16, file)))
+    }
+}
+
+impl<R: Read> PairReader<R> {
+    /// Reads pairs from any byte stream; `path` names it in errors.
+    pub fn new(path: impl Into<PathBuf>, source: R) -> Self {
+        let options = LinearReaderOptions::default()
+            .with_validate_chunk_crcs(true)
+            .with_validate_summary_section_crc(true)
+            .with_validate_data_section_crc(true)
+            .with_record_length_limit(RECORD_LIMIT);
+        Self {
+            path: path.into(),
+            source,
+            reader: LinearReader::new_with_options(options),
+            pair_channel: None,
+            expected: None,
+            count: 0,
+            done: false,
+        }
+    }
+
+    /// The next pair, `Ok(None)` at a clean end of the stream.
+    fn next_pair(&mut self) -> Result<Option<Pair>, DatasetError> {
+        let path = self.path.clone();
+        while let Some(event) = self.reader.next_event() {
+            match event.map_err(DatasetError::mcap(&path))? {
+                LinearReadEvent::ReadRequest(need) => {
+                    let buf = self.reader.insert(need);
+                    let n = loop {
+                        match self.source.read(buf) {
+                            Err(e) if e.kind() == ErrorKind::Interrupted => continue,
+                            other => break other.map_err(DatasetError::io(&path))?,
+                        }
+                    };
+                    self.reader.notify_read(n);
+                }
+                LinearReadEvent::Record { opcode, data } => {
+                    if opcode != op::CHANNEL && opcode != op::MESSAGE {
+                        continue;
+                    }
+                    match mcap::parse_record(opcode, data).map_err(DatasetError::mcap(&path))? {
+                        Record::Channel(channel) if channel.topic == PAIR_TOPIC => {
+                            check_channel(&path, &channel)?;
+                            self.pair_channel = Some(channel.id);
+                        }
+                        Record::Message { header, data } if Some(header.channel_id) == self.pair_channel => {
+                            let message = self.count;
+                            let record = decode_record(&data)
+                                .map_err(|reason| DatasetError::Decode { path: path.clone(), message, reason })?;
+                            let pair = record
+                                .into_pair()
+                                .map_err(|source| DatasetError::InvalidPair { path: path.clone(), source })?;
+                            self.count += 1;
+                            return Ok(Some(pair));
+                        }
+                        _ => {}
+                    }
+                }
+            }
+        }
+        if self.pair_channel.is_none() {
+            let reason = format!("no {PAIR_TOPIC} channel");
+            return Err(DatasetError::Schema { path, reason });
+        }
+        match self.expected {
+            Some(expected) if expected != self.count => {
+                Err(DatasetError::Truncated { path, expected, found: self.count })
+            }
+            _ => Ok(None),
+        }
+    }
+}
+
+fn check_channel(path: &Path, channel: &mcap::records::Channel) -> Result<(), DatasetError> {
+    let schema = channel.metadata.get("schema").map(String::as_str);
+    let version = channel.metadata.get("schema_version").map(String::as_str);
+    let expected_version = SCHEMA_VERSION.to_string();
+    if channel.message_encoding != PAIR_ENCODING
+        || schema != Some(PAIR_SCHEMA)
+        || version != Some(expected_version.as_str())
+    {
+        let reason = format!(
+            "{PAIR_TOPIC} has encoding {:?}, schema {schema:?} version {version:?} \
+             (expected {PAIR_ENCODING:?}, {PAIR_SCHEMA:?} version {SCHEMA_VERSION})",
+            channel.message_encoding
+        );
+        return Err(DatasetError::Schema { path: path.into(), reason });
+    }
+    Ok(())
+}
+
+impl<R: Read> Iterator for PairReader<R> {
+    type Item = Result<Pair, DatasetError>;
+
+    fn next(&mut self) -> Option<Self::Item> {
+        if self.done {
+            return None;
+        }
+        let result = self.next_pair();
+        if !matches!(result, Ok(Some(_))) {
+            self.done = true;
+        }
+        result.transpose()
+    }
+}

@@ -1,0 +1,183 @@
+//! Streaming dataset writer: pairs go to `pairs.mcap` and `index.csv` as they come; files
+//! carry a `.partial` suffix until [`DatasetWriter::finish`] renames them into place and
+//! writes `manifest.json` last.
+
+use std::collections::{BTreeMap, BTreeSet};
+use std::fs::File;
+use std::io::BufWriter;
+use std::path::{Path, PathBuf};
+
+use mcap::records::MessageHeader;
+use mcap::{Compression, WriteOptions, Writer};
+
+use super::index::IndexRow;
+use super::manifest::{Counts, DatasetOrigin, FileEntry, Manifest, FORMAT_NAME, FORMAT_VERSION, MANIFEST_FILE};
+use super::schema::{encode_pair, PAIR_ENCODING, PAIR_SCHEMA, PAIR_TOPIC, SCHEMA_VERSION};
+use super::viz::{self, POINT_CLOUD_JSON_SCHEMA, POINT_CLOUD_SCHEMA, VIZ_OFFSET, VIZ_P_TOPIC, VIZ_Q_TOPIC};
+use crate::error::DatasetError;
+use crate::pair::Pair;
+
+/// Name of the MCAP file in a dataset folder.
+pub const PAIRS_FILE: &str = "pairs.mcap";
+/// Name of the index file in a dataset folder.
+pub const INDEX_FILE: &str = "index.csv";
+/// Suffix of files being written.
+const PARTIAL: &str = ".partial";
+/// Uncompressed chunk size: bounds the writer's memory whatever the dataset size.
+const CHUNK_BYTES: u64 = 4 << 20;
+/// Nanoseconds between consecutive pairs, so that Foxglove shows one pair per second.
+const PAIR_PERIOD_NS: u64 = 1_000_000_000;
+
+/// Writes one dataset folder, pair by pair, with bounded memory.
+pub struct DatasetWriter {
+    dir: PathBuf,
+    mcap: Writer<BufWriter<File>>,
+    index: csv::Writer<BufWriter<File>>,
+    channels: Channels,
+    counts: Counts,
+    objects: BTreeSet<u32>,
+}
+
+struct Channels {
+    pair: u16,
+    viz_p: u16,
+    viz_q: u16,
+}
+
+fn partial(dir: &Path, name: &str) -> PathBuf {
+    dir.join(format!("{name}{PARTIAL}"))
+}
+
+impl DatasetWriter {
+    /// Starts a dataset in `dir` (created if missing). Fails with [`DatasetError::Exists`] if
+    /// `dir` already holds dataset files and `overwrite` is false; with `overwrite`, the old
+    /// files stay untouched until [`finish`](Self::finish) replaces them.
+    pub fn create(dir: &Path, overwrite: bool) -> Result<Self, DatasetError> {
+        let existing = [PAIRS_FILE, INDEX_FILE, MANIFEST_FILE].iter().any(|f| dir.join(f).exists());
+        if existing && !overwrite {
+            return Err(DatasetError::Exists { dir: dir.into() });
+        }
+        std::fs::create_dir_all(dir).map_err(DatasetError::io(dir))?;
+        let mcap_path = partial(dir, PAIRS_FILE);
+        let file = File::create(&mcap_path).map_err(DatasetError::io(&mcap_path))?;
+        // One compression thread: multithreaded zstd output depends on the machine's core
+        // count, and the files must be byte-identical everywhere.
+        let mut mcap = WriteOptions::new()
+            .compression(Some(Compression::Zstd))
+            .compression_threads(0)
+            .chunk_size(Some(CHUNK_BYTES))
+            .profile("")
+            .create(BufWriter::new(file))
+            .map_err(DatasetError::mcap(&mcap_path))?;
+        let channels = add_channels(&mut mcap).map_err(DatasetError::mcap(&mcap_path))?;
+        let index_path = partial(dir, INDEX_FILE);
+        let index_file = File::create(&index_path).map_err(DatasetError::io(&index_path))?;
+        Ok(Self {
+            dir: dir.into(),
+            mcap,
+            index: csv::Writer::from_writer(BufWriter::new(index_file)),
+            channels,
+            counts: Counts::default(),
+            objects: BTreeSet::new(),
+        })
+    }
+
+    /// Appends one pair: its record, its two visualisation clouds and its index row.
+    pub fn write(&mut self, pair: &Pair) -> Result<(), DatasetError> {
+        let seq = self.counts.pairs;
+        let mcap_path = partial(&self.dir, PAIRS_FILE);
+        let (input, truth) = (pair.input(), pair.truth());
+        let messages = [
+            (self.channels.pair, encode_pair(pair)),
+            (self.channels.viz_p, viz::point_cloud_message(&input.p.points, &truth.part_p, seq, -VIZ_OFFSET)),
+            (self.channels.viz_q, viz::point_cloud_message(&input.q.points, &truth.part_q, seq, VIZ_OFFSET)),
+        ];
+        for (channel_id, data) in messages {
+            let header = MessageHeader {
+                channel_id,
+                sequence: seq as u32,
+                log_time: seq * PAIR_PERIOD_NS,
+                publish_time: seq * PAIR_PERIOD_NS,
+            };
+            self.mcap.write_to_known_channel(&header, &data).map_err(DatasetError::mcap(&mcap_path))?;
+        }
+        let index_path = partial(&self.dir, INDEX_FILE);
+        self.index
+            .serialize(IndexRow::of(pair))
+            .map_err(|source| DatasetError::Csv { path: index_path, source })?;
+        let prov = pair.provenance();
+        self.counts.pairs += 1;
+        *self.counts.categories.entry(prov.category.clone()).or_default() += 1;
+        *self.counts.kinds.entry(input.kind.as_str().into()).or_default() += 1;
+        self.objects.insert(prov.object_id);
+        Ok(())
+    }
+
+    /// Number of pairs written so far.
+    pub fn len(&self) -> u64 {
+        self.counts.pairs
+    }
+
+    /// Whether no pair has been written yet.
+    pub fn is_empty(&self) -> bool {
+        self.counts.pairs == 0
+    }
+
+    /// Closes the files, renames them into place, and writes `manifest.json` last, so that a
+    /// folder with a manifest always holds a complete dataset.
+    pub fn finish(mut self, origin: DatasetOrigin) -> Result<Manifest, DatasetError> {
+        let mcap_path = partial(&self.dir, PAIRS_FILE);
+        self.mcap.finish().map_err(DatasetError::mcap(&mcap_path))?;
+        let file = self.mcap.into_inner().into_inner().map_err(|e| DatasetError::io(&mcap_path)(e.into_error()))?;
+        file.sync_all().map_err(DatasetError::io(&mcap_path))?;
+        let index_path = partial(&self.dir, INDEX_FILE);
+        let index_file = self
+            .index
+            .into_inner()
+            .map_err(|e| DatasetError::io(&index_path)(e.into_error()))?
+            .into_inner()
+            .map_err(|e| DatasetError::io(&index_path)(e.into_error()))?;
+        index_file.sync_all().map_err(DatasetError::io(&index_path))?;
+
+        // An old manifest goes first: from here until the new one lands, the folder reads as
+        // an unfinished dataset rather than as a finished one with mismatched files.
+        let manifest_path = self.dir.join(MANIFEST_FILE);
+        if manifest_path.exists() {
+            std::fs::remove_file(&manifest_path).map_err(DatasetError::io(&manifest_path))?;
+        }
+        let mut files = BTreeMap::new();
+        for name in [PAIRS_FILE, INDEX_FILE] {
+            let (from, to) = (partial(&self.dir, name), self.dir.join(name));
+            std::fs::rename(&from, &to).map_err(DatasetError::io(&to))?;
+            files.insert(name.to_string(), FileEntry::of(&to)?);
+        }
+        self.counts.objects = self.objects.len() as u64;
+        let manifest = Manifest {
+            format: FORMAT_NAME.into(),
+            format_version: FORMAT_VERSION,
+            origin,
+            counts: self.counts,
+            files,
+        };
+        let tmp = partial(&self.dir, MANIFEST_FILE);
+        let mut text = serde_json::to_vec_pretty(&manifest).expect("a manifest always serialises");
+        text.push(b'\n');
+        std::fs::write(&tmp, text).map_err(DatasetError::io(&tmp))?;
+        std::fs::rename(&tmp, &manifest_path).map_err(DatasetError::io(&manifest_path))?;
+        Ok(manifest)
+    }
+}
+
+fn add_channels(mcap: &mut Writer<BufWriter<File>>) -> mcap::McapResult<Channels> {
+    let pair_meta = BTreeMap::from([
+        ("schema".to_string(), PAIR_SCHEMA.to_string()),
+        ("schema_version".to_string(), SCHEMA_VERSION.to_string()),
+    ]);
+    // CBOR has no MCAP schema encoding: the channel has schema id 0 and names its layout in
+    // its metadata (docs/FORMAT.md).
+    let pair = mcap.add_channel(0, PAIR_TOPIC, PAIR_ENCODING, &pair_meta)?;
+    let schema = mcap.add_schema(POINT_CLOUD_SCHEMA, "jsonschema", POINT_CLOUD_JSON_SCHEMA.as_bytes())?;
+    let viz_p = mcap.add_channel(schema, VIZ_P_TOPIC, "json", &BTreeMap::new())?;
+    let viz_q = mcap.add_channel(schema, VIZ_Q_TOPIC, "json", &BTreeMap::new())?;
+    Ok(Channels { pair, viz_p, viz_q })
+}

@@ -1,0 +1,165 @@
+//! Typed errors of the shared data model and of the dataset files.
+
+use std::path::PathBuf;
+
+/// A pair record that breaks an invariant; names the pair and the field.
+#[derive(Debug, thiserror::Error, Clone, PartialEq)]
+#[non_exhaustive]
+pub enum PairError {
+    /// An array has the wrong number of entries.
+    #[error("pair {pair}: field `{field}` has {found} entries, expected {expected}")]
+    Length {
+        /// Pair id.
+        pair: String,
+        /// Field name as in the file format.
+        field: &'static str,
+        /// Expected number of entries.
+        expected: usize,
+        /// Number found.
+        found: usize,
+    },
+    /// A value is NaN or infinite.
+    #[error("pair {pair}: field `{field}` has a non-finite value at entry {index}")]
+    NonFinite {
+        /// Pair id.
+        pair: String,
+        /// Field name as in the file format.
+        field: &'static str,
+        /// Entry (point, part or joint) index.
+        index: usize,
+    },
+    /// A part id is not below the pair's number of parts.
+    #[error("pair {pair}: field `{field}` entry {index} holds part {id}, but the pair has {parts} parts")]
+    PartOutOfRange {
+        /// Pair id.
+        pair: String,
+        /// Field name as in the file format.
+        field: &'static str,
+        /// Entry index.
+        index: usize,
+        /// The offending id.
+        id: usize,
+        /// Number of parts of the pair.
+        parts: usize,
+    },
+    /// A value contradicts another field or the definitions of DESIGN.md.
+    #[error("pair {pair}: field `{field}` entry {index}: {reason}")]
+    Inconsistent {
+        /// Pair id.
+        pair: String,
+        /// Field name as in the file format.
+        field: &'static str,
+        /// Entry index.
+        index: usize,
+        /// What is wrong.
+        reason: String,
+    },
+}
+
+/// Failure to read or write a dataset folder.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum DatasetError {
+    /// An operating-system error on a file.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// The MCAP container is malformed, truncated or fails its checksums.
+    #[error("{path}: not a readable MCAP file (truncated or corrupt?): {source}")]
+    Mcap {
+        /// The file.
+        path: PathBuf,
+        /// The cause.
+        source: mcap::McapError,
+    },
+    /// The folder has no `manifest.json`: it is not a dataset, or its writing never finished.
+    #[error("{dir}: no manifest.json (not a dataset, or its generation did not finish)")]
+    MissingManifest {
+        /// The dataset folder.
+        dir: PathBuf,
+    },
+    /// The manifest cannot be parsed or has an unsupported format version.
+    #[error("{path}: invalid manifest: {reason}")]
+    Manifest {
+        /// The manifest file.
+        path: PathBuf,
+        /// What is wrong.
+        reason: String,
+    },
+    /// A file's checksum or size differs from the manifest's.
+    #[error("{path}: {reason} (the file changed after the manifest was written)")]
+    Checksum {
+        /// The file.
+        path: PathBuf,
+        /// Which of size or sha256 differs.
+        reason: String,
+    },
+    /// The MCAP file does not carry the `/pair` channel in the documented schema.
+    #[error("{path}: wrong schema: {reason}")]
+    Schema {
+        /// The file.
+        path: PathBuf,
+        /// What differs from docs/FORMAT.md.
+        reason: String,
+    },
+    /// A `/pair` message cannot be decoded as the documented CBOR record.
+    #[error("{path}: /pair message {message}: cannot decode: {reason}")]
+    Decode {
+        /// The file.
+        path: PathBuf,
+        /// Zero-based message number on `/pair`.
+        message: u64,
+        /// The decoder's complaint.
+        reason: String,
+    },
+    /// A decoded pair breaks an invariant.
+    #[error("{path}: {source}")]
+    InvalidPair {
+        /// The file.
+        path: PathBuf,
+        /// The broken invariant.
+        source: PairError,
+    },
+    /// The file ended before the number of pairs the manifest announces.
+    #[error("{path}: holds {found} pairs but the manifest announces {expected} (truncated?)")]
+    Truncated {
+        /// The file.
+        path: PathBuf,
+        /// Pairs announced.
+        expected: u64,
+        /// Pairs found.
+        found: u64,
+    },
+    /// The output folder already holds a dataset and overwriting was not asked for.
+    #[error("{dir} already holds a dataset; choose another folder or allow overwriting")]
+    Exists {
+        /// The dataset folder.
+        dir: PathBuf,
+    },
+    /// Writing `index.csv` failed.
+    #[error("{path}: {source}")]
+    Csv {
+        /// The file.
+        path: PathBuf,
+        /// The cause.
+        source: csv::Error,
+    },
+}
+
+impl DatasetError {
+    /// Wraps an I/O error with the file it concerns.
+    pub(crate) fn io(path: impl Into<PathBuf>) -> impl FnOnce(std::io::Error) -> Self {
+        let path = path.into();
+        move |source| Self::Io { path, source }
+    }
+
+    /// Wraps an MCAP error with the file it concerns.
+    pub(crate) fn mcap(path: impl Into<PathBuf>) -> impl FnOnce(mcap::McapError) -> Self {
+        let path = path.into();
+        move |source| Self::Mcap { path, source }
+    }
+}

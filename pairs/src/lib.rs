@@ -1,0 +1,52 @@
+//! The shared data model of articulated part induction.
+//!
+//! The central type is [`Pair`]: a source cloud P and a target cloud Q ([`PairInput`], what
+//! a method may see), with their [`GroundTruth`] (part ids, per-part [`Similarity`] motions,
+//! flow, correspondences, joints) and their [`Provenance`]. Every [`Cloud`] is normalised on
+//! its own (bounding box centred at the origin, diagonal 1) and keeps its [`Normalisation`].
+//! A [`Method`] maps a [`PairInput`] to a [`Prediction`]. The [`transform`] module holds the
+//! motion math every crate shares, and [`dataset`] reads and writes dataset folders
+//! (`pairs.mcap`, `index.csv`, `manifest.json`; see docs/FORMAT.md).
+//!
+//! ```
+//! use pairs::{synthetic, Pair};
+//!
+//! // A two-part hinge whose second part turns by 0.5 rad between P and Q.
+//! let pair: Pair = synthetic::hinge_pair("demo", 4, 0.5);
+//! let (input, truth) = (pair.input(), pair.truth());
+//! assert_eq!(truth.num_parts(), 2);
+//! // Ground truth maps every point of P onto its correspondence in Q.
+//! for (i, p) in input.p.points.iter().enumerate() {
+//!     let moved = truth.motions[truth.part_p[i] as usize].apply(p);
+//!     let target = input.q.points[truth.corr_index[i] as usize];
+//!     assert!((moved - target).norm() < 1e-5);
+//! }
+//! // Rebuilding it with a broken field is refused, naming the pair and the field.
+//! let (input, mut truth, provenance) = pair.into_parts();
+//! truth.part_q.pop();
+//! let err = Pair::new(input, truth, provenance).unwrap_err();
+//! assert!(err.to_string().contains("part_q"));
+//! ```
+#![deny(missing_docs)]
+
+pub mod cloud;
+pub mod dataset;
+pub mod error;
+pub mod ground_truth;
+pub mod joints;
+pub mod math;
+pub mod method;
+pub mod pair;
+pub mod parts;
+pub mod synthetic;
+pub mod transform;
+mod validate;
+
+pub use cloud::{Cloud, Normalisation};
+pub use error::{DatasetError, PairError};
+pub use ground_truth::GroundTruth;
+pub use joints::{JointKind, JointTruth};
+pub use method::{Method, MethodError, Prediction};
+pub use pair::{Pair, PairInput, PairKind, Provenance};
+pub use parts::PartId;
+pub use transform::Similarity;

@@ -1,0 +1,45 @@
+//! What a method sees (`PairInput`), what it returns (`Prediction`) and the `Method` trait that
+//! baselines and the network implement.
+
+use crate::math::{Real, Vector3};
+use crate::pair::PairInput;
+use crate::transform::Similarity;
+
+/// What every method returns for a pair.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct Prediction {
+    /// Flow on P, Q's normalised units; `None` for pure segmenters.
+    pub flow: Option<Vec<Vector3>>,
+    /// Segment id of every point of P.
+    pub segments_p: Vec<u32>,
+    /// Segment id of every point of Q (same ids as P); empty if the method does not segment Q.
+    pub segments_q: Vec<u32>,
+    /// Rigid (or similarity) motion of each segment, P's to Q's normalised frame; may be empty.
+    pub motions: Vec<Similarity>,
+    /// Soft correspondence mask on P in `[0, 1]`, if the method estimates one.
+    pub corr_mask: Option<Vec<Real>>,
+    /// Soft segment probabilities on P, row per point, if the method has them.
+    pub segment_probs: Option<Vec<Vec<Real>>>,
+}
+
+/// Why a method could not produce a prediction for a pair.
+#[derive(Debug, thiserror::Error)]
+#[error("method {method} failed on pair {pair}: {source}")]
+pub struct MethodError {
+    /// The method's name.
+    pub method: String,
+    /// The pair's id.
+    pub pair: String,
+    /// The method's own error.
+    #[source]
+    pub source: Box<dyn std::error::Error + Send + Sync>,
+}
+
+/// A part-induction method: segments, flow and motions from a pair without its ground truth.
+pub trait Method: Send + Sync {
+    /// Short stable name used in leaderboards.
+    fn name(&self) -> &str;
+
+    /// Predicts segments, flow and motions for one pair.
+    fn predict(&self, input: &PairInput) -> Result<Prediction, MethodError>;
+}

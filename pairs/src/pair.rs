@@ -1,0 +1,109 @@
+//! The pair record: two clouds (`PairInput`), their ground truth and their provenance.
+
+use serde::{Deserialize, Serialize};
+
+use crate::cloud::Cloud;
+use crate::error::PairError;
+use crate::ground_truth::GroundTruth;
+use crate::validate;
+
+/// Which observations a pair holds (DESIGN.md, "Shared definitions").
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash, Serialize, Deserialize)]
+pub enum PairKind {
+    /// Full shape to full shape.
+    #[serde(rename = "SF2F")]
+    Sf2f,
+    /// Full shape to a virtual scan.
+    #[serde(rename = "SF2P")]
+    Sf2p,
+    /// Virtual scan to virtual scan.
+    #[serde(rename = "SP2P")]
+    Sp2p,
+}
+
+impl PairKind {
+    /// Upper-case name, as written in files.
+    pub fn as_str(self) -> &'static str {
+        match self {
+            Self::Sf2f => "SF2F",
+            Self::Sf2p => "SF2P",
+            Self::Sp2p => "SP2P",
+        }
+    }
+}
+
+/// Where a pair came from, so that any pair can be regenerated.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Provenance {
+    /// Object category (e.g. `laptop`).
+    pub category: String,
+    /// Index of the object within its dataset.
+    pub object_id: u32,
+    /// Index of P's articulation state among the object's states.
+    pub articulation_p: u32,
+    /// Index of Q's articulation state among the object's states.
+    pub articulation_q: u32,
+    /// Seed of the dataset the pair belongs to.
+    pub seed: u64,
+    /// Version of the generator that made it.
+    pub generator_version: String,
+}
+
+/// A pair as a method sees it: the two clouds, without any ground truth.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PairInput {
+    /// Unique id within the dataset.
+    pub id: String,
+    /// Kind of observations.
+    pub kind: PairKind,
+    /// The source cloud, P's normalised frame.
+    pub p: Cloud,
+    /// The target cloud, Q's normalised frame.
+    pub q: Cloud,
+}
+
+/// A pair with its ground truth; constructed only through [`Pair::new`], which validates it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Pair {
+    input: PairInput,
+    truth: GroundTruth,
+    provenance: Provenance,
+}
+
+impl Pair {
+    /// Builds a pair, checking every invariant of DESIGN.md (shapes agree, values finite,
+    /// ids in range, correspondences consistent, flow equal to the part motions).
+    pub fn new(
+        input: PairInput,
+        truth: GroundTruth,
+        provenance: Provenance,
+    ) -> Result<Self, PairError> {
+        validate::pair(&input, &truth)?;
+        Ok(Self { input, truth, provenance })
+    }
+
+    /// The pair without its ground truth, for methods.
+    pub fn input(&self) -> &PairInput {
+        &self.input
+    }
+
+    /// The ground truth.
+    pub fn truth(&self) -> &GroundTruth {
+        &self.truth
+    }
+
+    /// Where the pair came from.
+    pub fn provenance(&self) -> &Provenance {
+        &self.provenance
+    }
+
+    /// The pair's id.
+    pub fn id(&self) -> &str {
+        &self.input.id
+    }
+
+    /// Splits the pair into its parts.
+    pub fn into_parts(self) -> (PairInput, GroundTruth, Provenance) {
+        (self.input, self.truth, self.provenance)
+    }
+}

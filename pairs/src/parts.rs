@@ -1,0 +1,31 @@
+//! Part identifiers: the per-point labels of the rigid parts of a pair.
+
+/// Identifier of a rigid part within one pair; part `k` in P is part `k` in Q.
+///
+/// Part 0 is the part that holds the object's root link (the base).
+pub type PartId = u8;
+
+/// Largest number of parts a pair may have (ids `0..MAX_PARTS`).
+pub const MAX_PARTS: usize = PartId::MAX as usize + 1;
+
+/// Number of points of each part, for ids below `parts`; ids out of range are ignored.
+pub fn part_sizes(ids: &[PartId], parts: usize) -> Vec<usize> {
+    let mut sizes = vec![0; parts];
+    for &id in ids {
+        if let Some(size) = sizes.get_mut(usize::from(id)) {
+            *size += 1;
+        }
+    }
+    sizes
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn sizes_count_each_part() {
+        assert_eq!(part_sizes(&[0, 1, 1, 2, 1], 3), vec![1, 3, 1]);
+        assert_eq!(part_sizes(&[0, 5], 2), vec![1, 0]);
+    }
+}
