@@ -14,5 +14,7 @@ pub type Rotation3 = nalgebra::Rotation3<Real>;
 pub type UnitQuaternion = nalgebra::UnitQuaternion<Real>;
 /// A rigid transform (rotation then translation).
 pub type Isometry3 = nalgebra::Isometry3<Real>;
+/// A translation in 3D.
+pub type Translation3 = nalgebra::Translation3<Real>;
 /// A unit-length vector (an axis).
 pub type UnitVector3 = nalgebra::Unit<Vector3>;

@@ -1,0 +1,148 @@
+//! The articulated-object model: links with triangle meshes, joined by revolute and
+//! prismatic joints in a tree.
+
+use pairs::math::{Point3, Real, Vector3};
+use pairs::JointKind;
+
+use crate::mesh::Mesh;
+
+/// A rigid piece of an object, its mesh given in the object's rest frame (all joints at 0).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Link {
+    /// Human-readable name (`lid`, `drawer`).
+    pub name: String,
+    /// Surface in the rest frame, object units.
+    pub mesh: Mesh,
+}
+
+/// A joint that moves `child` relative to `parent`.
+///
+/// Axis and pivot are given in the rest frame; they move with the parent link.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Joint {
+    /// Revolute (value in radians) or prismatic (value in object units).
+    pub kind: JointKind,
+    /// Index of the parent link.
+    pub parent: usize,
+    /// Index of the child link; always greater than `parent`.
+    pub child: usize,
+    /// A point on the axis (rest frame); unused for prismatic joints.
+    pub pivot: Point3,
+    /// Unit axis direction (rest frame).
+    pub axis: Vector3,
+    /// Lowest and highest value.
+    pub limits: (Real, Real),
+    /// Value in the object's rest state (a closed door), within the limits.
+    pub rest: Real,
+}
+
+/// An object whose link 0 is the root; every other link has exactly one parent joint.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ArticulatedObject {
+    /// Category name.
+    pub category: String,
+    /// Links; index 0 is the root.
+    pub links: Vec<Link>,
+    /// Joints, one per non-root link.
+    pub joints: Vec<Joint>,
+}
+
+/// An object that breaks the model's rules.
+#[derive(Debug, thiserror::Error, PartialEq)]
+#[non_exhaustive]
+pub enum ObjectError {
+    /// A link has no triangles, or a non-finite vertex.
+    #[error("{category}: link {link} has an empty or non-finite mesh")]
+    BadMesh {
+        /// Category name.
+        category: String,
+        /// Link name.
+        link: String,
+    },
+    /// The joints do not form a tree rooted at link 0 with parents before children.
+    #[error("{category}: joint {joint} does not fit a tree rooted at link 0 ({reason})")]
+    NotATree {
+        /// Category name.
+        category: String,
+        /// Joint index.
+        joint: usize,
+        /// What is wrong.
+        reason: String,
+    },
+    /// A joint's axis is not unit length, or its limits or rest value are out of order.
+    #[error("{category}: joint {joint} has {reason}")]
+    BadJoint {
+        /// Category name.
+        category: String,
+        /// Joint index.
+        joint: usize,
+        /// What is wrong.
+        reason: String,
+    },
+}
+
+impl ArticulatedObject {
+    /// An object with only its root link.
+    pub fn new(category: &str, root: Link) -> Self {
+        Self { category: category.into(), links: vec![root], joints: Vec::new() }
+    }
+
+    /// Adds `link` as the child of `parent` through a joint; returns the new link's index.
+    pub fn attach(&mut self, parent: usize, link: Link, mut joint: Joint) -> usize {
+        let child = self.links.len();
+        self.links.push(link);
+        joint.parent = parent;
+        joint.child = child;
+        self.joints.push(joint);
+        child
+    }
+
+    /// Index of the joint whose child is `link`, for every link (None for the root).
+    pub fn parent_joints(&self) -> Vec<Option<usize>> {
+        let mut parents = vec![None; self.links.len()];
+        for (j, joint) in self.joints.iter().enumerate() {
+            if let Some(slot) = parents.get_mut(joint.child) {
+                *slot = Some(j);
+            }
+        }
+        parents
+    }
+
+    /// Checks the rules of the model: non-empty finite meshes, a tree with parents before
+    /// children, unit axes, ordered limits that hold the rest value.
+    pub fn validate(&self) -> Result<(), ObjectError> {
+        let category = || self.category.clone();
+        for link in &self.links {
+            let finite = link.mesh.vertices.iter().all(|v| v.coords.iter().all(|c| c.is_finite()));
+            if link.mesh.triangles.is_empty() || !finite {
+                return Err(ObjectError::BadMesh { category: category(), link: link.name.clone() });
+            }
+        }
+        let mut seen = vec![false; self.links.len()];
+        for (j, joint) in self.joints.iter().enumerate() {
+            let tree_error = |reason: &str| ObjectError::NotATree { category: category(), joint: j, reason: reason.into() };
+            if joint.child >= self.links.len() || joint.child == 0 {
+                return Err(tree_error("child is the root or out of range"));
+            }
+            if joint.parent >= joint.child {
+                return Err(tree_error("parent does not come before child"));
+            }
+            if std::mem::replace(&mut seen[joint.child], true) {
+                return Err(tree_error("child already has a parent joint"));
+            }
+            let joint_error = |reason: &str| ObjectError::BadJoint { category: category(), joint: j, reason: reason.into() };
+            if (joint.axis.norm() - 1.0).abs() > 1e-4 {
+                return Err(joint_error("an axis that is not unit length"));
+            }
+            let (lo, hi) = joint.limits;
+            if !(lo < hi && lo <= joint.rest && joint.rest <= hi) {
+                return Err(joint_error("limits out of order or a rest value outside them"));
+            }
+        }
+        if let Some(orphan) = seen.iter().skip(1).position(|s| !s) {
+            let reason = format!("link {} has no parent joint", orphan + 1);
+            return Err(ObjectError::NotATree { category: category(), joint: self.joints.len(), reason });
+        }
+        Ok(())
+    }
+}
