@@ -81,7 +81,8 @@ pub enum ConfigError {
 impl GeneratorConfig {
     /// Checks every field; the first problem is returned.
     pub fn validate(&self) -> Result<(), ConfigError> {
-        let invalid = |field, reason: &str| Err(ConfigError::Invalid { field, reason: reason.into() });
+        let invalid =
+            |field, reason: &str| Err(ConfigError::Invalid { field, reason: reason.into() });
         if self.kind != PairKind::Sf2f {
             return Err(ConfigError::UnsupportedKind(self.kind));
         }
@@ -93,7 +94,10 @@ impl GeneratorConfig {
         }
         let possible = self.states_per_object * (self.states_per_object - 1) / 2;
         if self.pairs_per_object == 0 || self.pairs_per_object > possible {
-            return invalid("pairs_per_object", &format!("must be 1 to {possible} (pairs of distinct states)"));
+            return invalid(
+                "pairs_per_object",
+                &format!("must be 1 to {possible} (pairs of distinct states)"),
+            );
         }
         if self.points < 8 {
             return invalid("points", "must be at least 8");
@@ -123,7 +127,11 @@ impl GeneratorConfig {
             .map(|name| {
                 categories::find(name).ok_or_else(|| ConfigError::UnknownCategory {
                     name: name.clone(),
-                    known: categories::CATEGORIES.iter().map(|c| c.name).collect::<Vec<_>>().join(", "),
+                    known: categories::CATEGORIES
+                        .iter()
+                        .map(|c| c.name)
+                        .collect::<Vec<_>>()
+                        .join(", "),
                 })
             })
             .collect()
@@ -158,7 +166,10 @@ mod tests {
         let cases = [
             (GeneratorConfig { objects: 0, ..Default::default() }, "objects"),
             (GeneratorConfig { pairs_per_object: 50, ..Default::default() }, "pairs_per_object"),
-            (GeneratorConfig { categories: vec!["toaster".into()], ..Default::default() }, "toaster"),
+            (
+                GeneratorConfig { categories: vec!["toaster".into()], ..Default::default() },
+                "toaster",
+            ),
             (GeneratorConfig { kind: PairKind::Sp2p, ..Default::default() }, "scanner"),
         ];
         for (config, needle) in cases {

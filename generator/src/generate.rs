@@ -74,7 +74,10 @@ pub struct GeneratedPair {
 }
 
 /// Builds object `index` of a dataset: its category comes in turn from the config.
-pub fn build_object(config: &GeneratorConfig, index: u32) -> Result<ArticulatedObject, GenerateError> {
+pub fn build_object(
+    config: &GeneratorConfig,
+    index: u32,
+) -> Result<ArticulatedObject, GenerateError> {
     let categories = config.categories()?;
     let category = categories[index as usize % categories.len()];
     let object = (category.build)(&mut rng_for(config.seed, u64::from(index), Stream::Object));
@@ -83,21 +86,27 @@ pub fn build_object(config: &GeneratorConfig, index: u32) -> Result<ArticulatedO
 }
 
 /// All pairs of object `index`, per the paper's protocol.
-pub fn object_pairs(config: &GeneratorConfig, index: u32) -> Result<Vec<GeneratedPair>, GenerateError> {
+pub fn object_pairs(
+    config: &GeneratorConfig,
+    index: u32,
+) -> Result<Vec<GeneratedPair>, GenerateError> {
     let object = build_object(config, index)?;
     let sampler = SurfaceSampler::new(&object);
     let mut rng = rng_for(config.seed, u64::from(index), Stream::States);
-    let states: Vec<Vec<Real>> =
-        (0..config.states_per_object).map(|_| draw_state(&object, config.rest_probability, &mut rng)).collect();
+    let states: Vec<Vec<Real>> = (0..config.states_per_object)
+        .map(|_| draw_state(&object, config.rest_probability, &mut rng))
+        .collect();
     let wanted = config.pairs_per_object as usize;
     let mut pairs = Vec::with_capacity(wanted);
+    let scene = Scene { config, object: &object, sampler: &sampler, index };
     for (candidate, (i, j)) in candidate_pairs(&states, &mut rng).into_iter().enumerate() {
         if pairs.len() == wanted {
             break;
         }
         let mut rng = rng_for(config.seed, u64::from(index), Stream::Pair(candidate as u32));
-        let states = ((i, &states[i]), (j, &states[j]));
-        if let Some(pair) = make_pair(config, &object, &sampler, index, pairs.len(), states, &mut rng)? {
+        let (p, q) =
+            (State { index: i, values: &states[i] }, State { index: j, values: &states[j] });
+        if let Some(pair) = make_pair(&scene, pairs.len(), p, q, &mut rng)? {
             pairs.push(pair);
         }
     }
@@ -113,19 +122,34 @@ pub fn object_pairs(config: &GeneratorConfig, index: u32) -> Result<Vec<Generate
     Ok(pairs)
 }
 
+/// One object of a dataset and what every pair of it needs.
+struct Scene<'a> {
+    config: &'a GeneratorConfig,
+    object: &'a ArticulatedObject,
+    sampler: &'a SurfaceSampler,
+    index: u32,
+}
+
+/// One articulation state: its index among the object's states and its joint values.
+struct State<'a> {
+    index: usize,
+    values: &'a [Real],
+}
+
 /// One pair between two states, or `None` if a part gets fewer than `min_part_points`.
 fn make_pair(
-    config: &GeneratorConfig,
-    object: &ArticulatedObject,
-    sampler: &SurfaceSampler,
-    object_index: u32,
+    scene: &Scene,
     pair_index: usize,
-    ((state_p, values_p), (state_q, values_q)): ((usize, &Vec<Real>), (usize, &Vec<Real>)),
+    state_p: State,
+    state_q: State,
     rng: &mut Rng,
 ) -> Result<Option<GeneratedPair>, GenerateError> {
+    let Scene { config, object, sampler, index: object_index } = *scene;
+    let (values_p, values_q) = (state_p.values, state_q.values);
     let n = config.points as usize;
     let pose = |values: &[Real], rng: &mut Rng| {
-        let global = global_pose(config.pose_rotation_deg as Real, config.pose_translation as Real, rng);
+        let global =
+            global_pose(config.pose_rotation_deg as Real, config.pose_translation as Real, rng);
         link_poses(object, values).into_iter().map(|l| global * l).collect::<Vec<_>>()
     };
     let poses_p = pose(values_p, rng);
@@ -136,10 +160,12 @@ fn make_pair(
         let points: Vec<_> = samples.iter().map(|s| s.posed(poses)).collect();
         Cloud::normalise(&points)
     };
-    let (Some(cloud_p), Some(cloud_q)) = (cloud(&samples_p, &poses_p), cloud(&samples_q, &poses_q)) else {
+    let (Some(cloud_p), Some(cloud_q)) = (cloud(&samples_p, &poses_p), cloud(&samples_q, &poses_q))
+    else {
         return Ok(None);
     };
-    let motions: Vec<Isometry3> = poses_q.iter().zip(&poses_p).map(|(q, p)| q * p.inverse()).collect();
+    let motions: Vec<Isometry3> =
+        poses_q.iter().zip(&poses_p).map(|(q, p)| q * p.inverse()).collect();
     let parts = merge_links(&motions, cloud_p.normalisation.scale);
     let p = Side { samples: &samples_p, poses: &poses_p, values: values_p, cloud: &cloud_p };
     let q = Side { samples: &samples_q, poses: &poses_q, values: values_q, cloud: &cloud_q };
@@ -158,8 +184,8 @@ fn make_pair(
     let provenance = Provenance {
         category: object.category.clone(),
         object_id: object_index,
-        articulation_p: state_p as u32,
-        articulation_q: state_q as u32,
+        articulation_p: state_p.index as u32,
+        articulation_q: state_q.index as u32,
         seed: config.seed,
         generator_version: GENERATOR_VERSION.into(),
     };

@@ -10,7 +10,9 @@ use crate::objects::{ArticulatedObject, Joint};
 pub fn joint_motion(joint: &Joint, value: Real) -> Isometry3 {
     match joint.kind {
         JointKind::Revolute => rotation_about(&joint.pivot, &joint.axis, value),
-        JointKind::Prismatic => Isometry3::from_parts(Translation3::from(joint.axis * value), Default::default()),
+        JointKind::Prismatic => {
+            Isometry3::from_parts(Translation3::from(joint.axis * value), Default::default())
+        }
     }
 }
 
@@ -47,7 +49,12 @@ mod tests {
             rest: 0.0,
         };
         let arm = obj.attach(0, link("slider"), slide);
-        let hinge = Joint { kind: JointKind::Revolute, axis: Vector3::z(), limits: (0.0, 2.0), ..obj.joints[0].clone() };
+        let hinge = Joint {
+            kind: JointKind::Revolute,
+            axis: Vector3::z(),
+            limits: (0.0, 2.0),
+            ..obj.joints[0].clone()
+        };
         let tip = obj.attach(arm, link("tip"), hinge);
         obj.validate().expect("valid tree");
         let poses = link_poses(&obj, &[0.5, std::f32::consts::FRAC_PI_2]);

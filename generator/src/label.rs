@@ -40,10 +40,11 @@ pub fn merge_links(link_motions: &[Isometry3], size: Real) -> Parts {
         .iter()
         .enumerate()
         .map(|(link, m)| {
-            let part = first_link.iter().position(|&r| same(m, &link_motions[r])).unwrap_or_else(|| {
-                first_link.push(link);
-                first_link.len() - 1
-            });
+            let part =
+                first_link.iter().position(|&r| same(m, &link_motions[r])).unwrap_or_else(|| {
+                    first_link.push(link);
+                    first_link.len() - 1
+                });
             part as PartId
         })
         .collect();
@@ -74,8 +75,13 @@ pub fn ground_truth(object: &ArticulatedObject, p: &Side, q: &Side, parts: &Part
         .collect();
     let part_p: Vec<PartId> = p.samples.iter().map(|s| parts.of_link[s.link]).collect();
     let part_q: Vec<PartId> = q.samples.iter().map(|s| parts.of_link[s.link]).collect();
-    let moved: Vec<Point3> =
-        p.cloud.points.iter().zip(&part_p).map(|(x, &k)| motions[usize::from(k)].apply(x)).collect();
+    let moved: Vec<Point3> = p
+        .cloud
+        .points
+        .iter()
+        .zip(&part_p)
+        .map(|(x, &k)| motions[usize::from(k)].apply(x))
+        .collect();
     let flow = moved.iter().zip(&p.cloud.points).map(|(m, x)| m - x).collect();
     let corr_index = moved
         .iter()

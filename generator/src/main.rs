@@ -75,8 +75,10 @@ impl Args {
     fn config(&self) -> Result<GeneratorConfig> {
         let mut config = match &self.config {
             Some(path) => {
-                let text = std::fs::read_to_string(path).with_context(|| format!("reading {}", path.display()))?;
-                toml::from_str(&text).with_context(|| format!("parsing config {}", path.display()))?
+                let text = std::fs::read_to_string(path)
+                    .with_context(|| format!("reading {}", path.display()))?;
+                toml::from_str(&text)
+                    .with_context(|| format!("parsing config {}", path.display()))?
             }
             None => GeneratorConfig::default(),
         };
@@ -112,7 +114,10 @@ fn run(args: Args) -> Result<()> {
         return Ok(());
     }
     config.validate().context("checking the config")?;
-    let out = args.out.clone().unwrap_or_else(|| PathBuf::from("datasets").join(config.kind.as_str().to_lowercase()));
+    let out = args
+        .out
+        .clone()
+        .unwrap_or_else(|| PathBuf::from("datasets").join(config.kind.as_str().to_lowercase()));
     if !args.force && out.join(pairs::dataset::MANIFEST_FILE).exists() {
         bail!("{} already holds a dataset; pass --force to replace it", out.display());
     }
@@ -120,11 +125,16 @@ fn run(args: Args) -> Result<()> {
         if threads == 0 {
             bail!("--threads must be at least 1");
         }
-        rayon::ThreadPoolBuilder::new().num_threads(threads).build_global().context("starting the thread pool")?;
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build_global()
+            .context("starting the thread pool")?;
     }
     let bar = ProgressBar::new(config.total_pairs()).with_style(
-        ProgressStyle::with_template("{msg} [{elapsed_precise}] {wide_bar} {pos}/{len} pairs ({eta})")
-            .expect("the template is valid"),
+        ProgressStyle::with_template(
+            "{msg} [{elapsed_precise}] {wide_bar} {pos}/{len} pairs ({eta})",
+        )
+        .expect("the template is valid"),
     );
     bar.set_message(format!("generating {}", out.display()));
     let started = std::time::Instant::now();

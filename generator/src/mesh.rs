@@ -16,7 +16,10 @@ impl Mesh {
     /// An axis-aligned box spanning two opposite corners.
     pub fn cuboid(min: Point3, max: Point3) -> Self {
         let centre = nalgebra::center(&min, &max);
-        Self::oriented_cuboid(&Isometry3::translation(centre.x, centre.y, centre.z), (max - min) * 0.5)
+        Self::oriented_cuboid(
+            &Isometry3::translation(centre.x, centre.y, centre.z),
+            (max - min) * 0.5,
+        )
     }
 
     /// A box with the given half extents, placed by `pose`.
@@ -30,10 +33,13 @@ impl Mesh {
         let axis = b - a;
         let (vertices, triangles) = Cylinder::new(axis.norm() * 0.5, radius).to_trimesh(segments);
         // parry's cylinder runs along y; turn y onto the axis (half a turn if they oppose).
-        let rotation = UnitQuaternion::rotation_between(&Vector3::y(), &axis)
-            .unwrap_or_else(|| UnitQuaternion::from_axis_angle(&Vector3::x_axis(), std::f32::consts::PI));
+        let rotation =
+            UnitQuaternion::rotation_between(&Vector3::y(), &axis).unwrap_or_else(|| {
+                UnitQuaternion::from_axis_angle(&Vector3::x_axis(), std::f32::consts::PI)
+            });
         let centre = nalgebra::center(&a, &b);
-        Self { vertices, triangles }.transformed(&Isometry3::from_parts(centre.coords.into(), rotation))
+        Self { vertices, triangles }
+            .transformed(&Isometry3::from_parts(centre.coords.into(), rotation))
     }
 
     /// A ring of `segments` boxes around `centre` in the plane normal to z, the way a
@@ -100,7 +106,11 @@ mod tests {
         let cyl = Mesh::cylinder(Point3::origin(), Point3::new(0.0, 0.0, 2.0), 0.5, 64);
         let exact = std::f32::consts::TAU * 0.5 * 2.0 + 2.0 * std::f32::consts::PI * 0.25;
         assert!((cyl.area() - exact).abs() / exact < 0.01);
-        let ends = cyl.vertices.iter().map(|v| v.z).fold((f32::MAX, f32::MIN), |(lo, hi), z| (lo.min(z), hi.max(z)));
+        let ends = cyl
+            .vertices
+            .iter()
+            .map(|v| v.z)
+            .fold((f32::MAX, f32::MIN), |(lo, hi), z| (lo.min(z), hi.max(z)));
         assert!(ends.0.abs() < 1e-5 && (ends.1 - 2.0).abs() < 1e-5);
     }
 }

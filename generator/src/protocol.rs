@@ -14,7 +14,13 @@ pub fn draw_state(object: &ArticulatedObject, rest_probability: f64, rng: &mut R
     object
         .joints
         .iter()
-        .map(|j| if rng.random_bool(rest_probability) { j.rest } else { rng.random_range(j.limits.0..=j.limits.1) })
+        .map(|j| {
+            if rng.random_bool(rest_probability) {
+                j.rest
+            } else {
+                rng.random_range(j.limits.0..=j.limits.1)
+            }
+        })
         .collect()
 }
 
@@ -33,7 +39,11 @@ pub fn candidate_pairs(states: &[Vec<Real>], rng: &mut Rng) -> Vec<(usize, usize
 /// and a translation of up to `max_translation` (object units) along each coordinate.
 pub fn global_pose(max_rotation_deg: Real, max_translation: Real, rng: &mut Rng) -> Isometry3 {
     let axis = loop {
-        let v = Vector3::new(rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0), rng.random_range(-1.0..1.0));
+        let v = Vector3::new(
+            rng.random_range(-1.0..1.0),
+            rng.random_range(-1.0..1.0),
+            rng.random_range(-1.0..1.0),
+        );
         let n = v.norm();
         if n > 1e-3 && n <= 1.0 {
             break v / n;

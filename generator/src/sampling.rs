@@ -73,7 +73,9 @@ impl SurfaceSampler {
                 // Uniform barycentric coordinates (Osada et al. 2002).
                 let r1 = rng.random::<f32>().sqrt();
                 let r2 = rng.random::<f32>();
-                let rest = Point3::from(a.coords * (1.0 - r1) + b.coords * (r1 * (1.0 - r2)) + c.coords * (r1 * r2));
+                let rest = Point3::from(
+                    a.coords * (1.0 - r1) + b.coords * (r1 * (1.0 - r2)) + c.coords * (r1 * r2),
+                );
                 SurfacePoint { link, rest }
             })
             .collect()
@@ -99,7 +101,11 @@ mod tests {
         let on_big = pts.iter().filter(|p| p.link == 1).count() as f64 / 6000.0;
         assert!((on_big - 0.8).abs() < 0.03, "{on_big}");
         for p in &pts {
-            let q = if p.link == 0 { p.rest.coords } else { (p.rest.coords - pairs::math::Vector3::new(2.0, 0.0, 0.0)) / 2.0 };
+            let q = if p.link == 0 {
+                p.rest.coords
+            } else {
+                (p.rest.coords - pairs::math::Vector3::new(2.0, 0.0, 0.0)) / 2.0
+            };
             let on_face = q.iter().any(|c| c.abs() < 1e-5 || (c - 1.0).abs() < 1e-5);
             assert!(on_face && q.iter().all(|c| (-1e-5..=1.0 + 1e-5).contains(c)), "{q:?}");
         }

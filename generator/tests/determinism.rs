@@ -12,7 +12,14 @@ fn generate_with_threads(threads: usize, dir: &std::path::Path, config: &Generat
 #[test]
 fn one_and_two_threads_give_byte_identical_files() {
     // More objects than one parallel batch, so that batches and threads interleave.
-    let config = GeneratorConfig { objects: 40, pairs_per_object: 2, points: 64, min_part_points: 4, seed: 5, ..Default::default() };
+    let config = GeneratorConfig {
+        objects: 40,
+        pairs_per_object: 2,
+        points: 64,
+        min_part_points: 4,
+        seed: 5,
+        ..Default::default()
+    };
     let (a, b) = (tempfile::tempdir().expect("tempdir"), tempfile::tempdir().expect("tempdir"));
     generate_with_threads(1, a.path(), &config);
     generate_with_threads(2, b.path(), &config);
@@ -22,7 +29,8 @@ fn one_and_two_threads_give_byte_identical_files() {
     }
     let dataset = Dataset::open(a.path()).expect("open");
     dataset.verify().expect("checksums");
-    let pairs: Vec<_> = dataset.pairs().expect("pairs").collect::<Result<_, _>>().expect("valid pairs");
+    let pairs: Vec<_> =
+        dataset.pairs().expect("pairs").collect::<Result<_, _>>().expect("valid pairs");
     assert_eq!(pairs.len(), 80);
     assert_eq!(dataset.manifest().origin.config["seed"], 5);
     let other_seed = GeneratorConfig { seed: 6, ..config };
@@ -34,7 +42,8 @@ fn one_and_two_threads_give_byte_identical_files() {
 
 #[test]
 fn existing_datasets_are_not_overwritten_by_default() {
-    let config = GeneratorConfig { objects: 1, points: 64, min_part_points: 4, ..Default::default() };
+    let config =
+        GeneratorConfig { objects: 1, points: 64, min_part_points: 4, ..Default::default() };
     let dir = tempfile::tempdir().expect("tempdir");
     generate_dataset(&config, dir.path(), false, |_| {}).expect("first");
     let before = std::fs::read(dir.path().join(PAIRS_FILE)).expect("read");

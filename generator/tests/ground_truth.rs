@@ -10,7 +10,13 @@ use parry3d::query::PointQuery;
 use parry3d::shape::TriMesh;
 
 fn config_for(category: &str) -> GeneratorConfig {
-    GeneratorConfig { objects: 2, points: 256, categories: vec![category.into()], seed: 11, ..Default::default() }
+    GeneratorConfig {
+        objects: 2,
+        points: 256,
+        categories: vec![category.into()],
+        seed: 11,
+        ..Default::default()
+    }
 }
 
 #[test]
@@ -30,7 +36,12 @@ fn motions_map_p_onto_q_surface_for_every_category() {
                             continue;
                         }
                         let offset = vertices.len() as u32;
-                        vertices.extend(l.mesh.vertices.iter().map(|v| norm_q.apply(&(generated.poses_q[link] * v))));
+                        vertices.extend(
+                            l.mesh
+                                .vertices
+                                .iter()
+                                .map(|v| norm_q.apply(&(generated.poses_q[link] * v))),
+                        );
                         indices.extend(l.mesh.triangles.iter().map(|t| t.map(|i| i + offset)));
                     }
                     let mesh = TriMesh::new(vertices, indices).expect("valid mesh");
@@ -40,8 +51,16 @@ fn motions_map_p_onto_q_surface_for_every_category() {
                         }
                         let moved: Point3 = truth.motions[part].apply(p);
                         let d = mesh.distance_to_local_point(&moved, false);
-                        assert!(d < 1e-4, "{}: point {i} of part {part} lands {d} from Q's surface", input.id);
-                        assert!((moved - p - truth.flow[i]).norm() < 1e-5, "{}: flow {i}", input.id);
+                        assert!(
+                            d < 1e-4,
+                            "{}: point {i} of part {part} lands {d} from Q's surface",
+                            input.id
+                        );
+                        assert!(
+                            (moved - p - truth.flow[i]).norm() < 1e-5,
+                            "{}: flow {i}",
+                            input.id
+                        );
                     }
                 }
             }
@@ -62,14 +81,16 @@ fn parts_agree_between_p_and_q_and_moving_parts_moved() {
             }
             // Every moving part has its joint, and its joint value changed.
             for part in 1..k {
-                let joint = truth.joints.iter().find(|j| usize::from(j.part) == part).expect("joint");
+                let joint =
+                    truth.joints.iter().find(|j| usize::from(j.part) == part).expect("joint");
                 assert_ne!(joint.value_p, joint.value_q);
             }
             // Parts are links grouped by motion: two parts never share a motion.
             for a in 0..k {
                 for b in a + 1..k {
                     let (ma, mb) = (&truth.motions[a], &truth.motions[b]);
-                    let same = (ma.rotation - mb.rotation).amax() < 1e-6 && (ma.translation - mb.translation).norm() < 1e-6;
+                    let same = (ma.rotation - mb.rotation).amax() < 1e-6
+                        && (ma.translation - mb.translation).norm() < 1e-6;
                     assert!(!same, "{}: parts {a} and {b} move together", generated.pair.id());
                 }
             }

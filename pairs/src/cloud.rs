@@ -81,7 +81,8 @@ mod tests {
 
     #[test]
     fn normalised_cloud_has_unit_diagonal_centred_box() {
-        let pts = [Point3::new(1.0, 2.0, 3.0), Point3::new(4.0, 6.0, 3.0), Point3::new(2.0, 2.0, 3.0)];
+        let pts =
+            [Point3::new(1.0, 2.0, 3.0), Point3::new(4.0, 6.0, 3.0), Point3::new(2.0, 2.0, 3.0)];
         let cloud = Cloud::normalise(&pts).expect("non-degenerate");
         let n = Normalisation::of_points(&cloud.points).expect("non-degenerate");
         assert!(n.centre.norm() < 1e-6);

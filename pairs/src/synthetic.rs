@@ -38,12 +38,8 @@ pub fn hinge_pair(id: &str, side: usize, angle: Real) -> Pair {
         .iter()
         .map(|m| Similarity::between_normalised(m, &p.normalisation, &q.normalisation))
         .collect();
-    let flow = p
-        .points
-        .iter()
-        .zip(&parts)
-        .map(|(x, &k)| motions[usize::from(k)].apply(x) - x)
-        .collect();
+    let flow =
+        p.points.iter().zip(&parts).map(|(x, &k)| motions[usize::from(k)].apply(x) - x).collect();
     let n = object_p.len();
     let joint = JointTruth {
         part: 1,

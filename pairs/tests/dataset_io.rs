@@ -4,7 +4,9 @@ use std::collections::BTreeMap;
 use std::path::Path;
 
 use pairs::dataset::schema::{PairRecord, PAIR_SCHEMA};
-use pairs::dataset::{Dataset, DatasetOrigin, DatasetWriter, PairReader, MANIFEST_FILE, PAIRS_FILE};
+use pairs::dataset::{
+    Dataset, DatasetOrigin, DatasetWriter, PairReader, MANIFEST_FILE, PAIRS_FILE,
+};
 use pairs::{synthetic, DatasetError, Pair, PairError};
 
 fn origin() -> DatasetOrigin {
@@ -16,7 +18,9 @@ fn origin() -> DatasetOrigin {
 }
 
 fn sample_pairs() -> Vec<Pair> {
-    (0..3).map(|i| synthetic::hinge_pair(&format!("hinge-{i}"), 4 + i, 0.3 * (i + 1) as f32)).collect()
+    (0..3)
+        .map(|i| synthetic::hinge_pair(&format!("hinge-{i}"), 4 + i, 0.3 * (i + 1) as f32))
+        .collect()
 }
 
 fn write_dataset(dir: &Path, pairs: &[Pair]) {
@@ -146,7 +150,10 @@ fn corrupt_bytes_give_errors_or_the_original_pairs() {
             Ok(read) => assert_eq!(read, pairs, "a flip at byte {pos} changed the pairs"),
         }
         let verify = Dataset::open(dir.path()).expect("open").verify();
-        assert!(matches!(verify, Err(DatasetError::Checksum { .. })), "flip at {pos} passed verify");
+        assert!(
+            matches!(verify, Err(DatasetError::Checksum { .. })),
+            "flip at {pos} passed verify"
+        );
     }
     assert!(detected > 0);
 }

@@ -35,7 +35,13 @@ fn the_documented_python_snippet_reads_a_pair() {
     let pair = synthetic::hinge_pair("py-0", 5, 0.8);
     let mut writer = DatasetWriter::create(dir.path(), false).expect("create");
     writer.write(&pair).expect("write");
-    writer.finish(DatasetOrigin { generator_version: "test".into(), seed: 0, config: serde_json::json!({}) }).expect("finish");
+    writer
+        .finish(DatasetOrigin {
+            generator_version: "test".into(),
+            seed: 0,
+            config: serde_json::json!({}),
+        })
+        .expect("finish");
 
     let path = dir.path().join(PAIRS_FILE);
     let code = snippet().replace("datasets/sf2f/pairs.mcap", path.to_str().expect("utf-8 path"));
@@ -46,9 +52,16 @@ assert np.abs(p[mask] + flow[mask] - moved[mask]).max() < 1e-5
 assert (corr_index == np.arange(len(p))).all()
 print('first', *p[0], *q[-1])
 ";
-    let out = Command::new("python3").args(["-c", &format!("{code}{checks}")]).output().expect("python runs");
+    let out = Command::new("python3")
+        .args(["-c", &format!("{code}{checks}")])
+        .output()
+        .expect("python runs");
     let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(out.status.success(), "python failed: {}\n{stdout}", String::from_utf8_lossy(&out.stderr));
+    assert!(
+        out.status.success(),
+        "python failed: {}\n{stdout}",
+        String::from_utf8_lossy(&out.stderr)
+    );
     assert!(stdout.starts_with("py-0 (50, 3) (50, 3) 2 hinge"), "{stdout}");
     let first: Vec<f32> = stdout
         .lines()

@@ -13,7 +13,8 @@ use crate::seed::Rng;
 /// The cabinet category.
 pub const CATEGORY: Category = Category {
     name: "cabinet",
-    description: "carcass with a prismatic drawer on top and a revolute door below (hinge left or right)",
+    description:
+        "carcass with a prismatic drawer on top and a revolute door below (hinge left or right)",
     build,
 };
 
@@ -36,10 +37,17 @@ fn build(rng: &mut Rng) -> ArticulatedObject {
         Mesh::cuboid(Point3::new(-hw, 0.0, -hd), Point3::new(hw, h, -hd + t)),
         Mesh::cuboid(Point3::new(-hw + t, split - t, -hd + t), Point3::new(hw - t, split, hd)),
     ]);
-    let mut object = ArticulatedObject::new("cabinet", Link { name: "carcass".into(), mesh: carcass });
+    let mut object =
+        ArticulatedObject::new("cabinet", Link { name: "carcass".into(), mesh: carcass });
     let gap = 0.004;
-    let (drawer_mesh, slide) =
-        drawer((-hw + t + gap, hw - t - gap), (split + gap, h - t - gap), hd - t, d - 2.0 * t, t * 0.6, max_travel);
+    let (drawer_mesh, slide) = drawer(
+        (-hw + t + gap, hw - t - gap),
+        (split + gap, h - t - gap),
+        hd - t,
+        d - 2.0 * t,
+        t * 0.6,
+        max_travel,
+    );
     object.attach(0, Link { name: "drawer".into(), mesh: drawer_mesh }, slide);
     let (door_mesh, hinge) = front_door((-hw, hw), (t, split - t), hd, t, side, max_door);
     object.attach(0, Link { name: "door".into(), mesh: door_mesh }, hinge);

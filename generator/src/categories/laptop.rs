@@ -26,8 +26,14 @@ fn build(rng: &mut Rng) -> ArticulatedObject {
     let (hw, hd) = (w * 0.5, d * 0.5);
     let base = Mesh::union([
         Mesh::cuboid(Point3::new(-hw, 0.0, -hd), Point3::new(hw, h, hd)),
-        Mesh::cuboid(Point3::new(-0.42 * w, h, -0.42 * d), Point3::new(0.42 * w, h + 0.002, 0.08 * d)),
-        Mesh::cuboid(Point3::new(-0.15 * w, h, 0.16 * d), Point3::new(0.15 * w, h + 0.001, 0.42 * d)),
+        Mesh::cuboid(
+            Point3::new(-0.42 * w, h, -0.42 * d),
+            Point3::new(0.42 * w, h + 0.002, 0.08 * d),
+        ),
+        Mesh::cuboid(
+            Point3::new(-0.15 * w, h, 0.16 * d),
+            Point3::new(0.15 * w, h + 0.001, 0.42 * d),
+        ),
         Mesh::cylinder(Point3::new(-hw, h, -hd), Point3::new(-0.7 * hw, h, -hd), 0.5 * h, 10),
         Mesh::cylinder(Point3::new(0.7 * hw, h, -hd), Point3::new(hw, h, -hd), 0.5 * h, 10),
     ]);

@@ -39,7 +39,11 @@ mod tests {
             a.validate().unwrap_or_else(|e| panic!("{e}"));
             assert_eq!(a.category, category.name);
             assert!(!a.joints.is_empty(), "{} has no joint", category.name);
-            assert_ne!(a.links[0].mesh, b.links[0].mesh, "{} proportions do not vary", category.name);
+            assert_ne!(
+                a.links[0].mesh, b.links[0].mesh,
+                "{} proportions do not vary",
+                category.name
+            );
             assert_eq!(a, (category.build)(&mut rng_for(0, 0, Stream::Object)));
         }
     }

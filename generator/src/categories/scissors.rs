@@ -33,10 +33,18 @@ fn blade(length: Real, width: Real, thickness: Real, z: Real, side: Real) -> Mes
         Point3::new(blade_len, 0.25 * width, z + half_t),
     );
     let shank = Mesh::oriented_cuboid(
-        &Isometry3::new(Vector3::new(-0.5 * shank_len, side * 0.3 * loop_r, z), Vector3::z() * (side * -0.3)),
+        &Isometry3::new(
+            Vector3::new(-0.5 * shank_len, side * 0.3 * loop_r, z),
+            Vector3::z() * (side * -0.3),
+        ),
         Vector3::new(0.55 * shank_len, 0.3 * width, 2.0 * half_t),
     );
-    let ring = Mesh::ring(Point3::new(-shank_len - 0.6 * loop_r, side * 1.1 * loop_r, z), loop_r, 0.15 * loop_r, 12);
+    let ring = Mesh::ring(
+        Point3::new(-shank_len - 0.6 * loop_r, side * 1.1 * loop_r, z),
+        loop_r,
+        0.15 * loop_r,
+        12,
+    );
     Mesh::union([root, tip, shank, ring])
 }
 
@@ -55,7 +63,8 @@ fn build(rng: &mut Rng) -> ArticulatedObject {
     // The upper blade lies one thickness above the lower one; its loop is on the other side
     // of the pivot line, so that opening the blades spreads the loops as in real scissors.
     let upper = blade(length, width, thickness, thickness * 1.05, -1.0);
-    let mut object = ArticulatedObject::new("scissors", Link { name: "lower blade".into(), mesh: lower });
+    let mut object =
+        ArticulatedObject::new("scissors", Link { name: "lower blade".into(), mesh: lower });
     let pivot = Joint {
         kind: JointKind::Revolute,
         parent: 0,

@@ -120,7 +120,11 @@ impl ArticulatedObject {
         }
         let mut seen = vec![false; self.links.len()];
         for (j, joint) in self.joints.iter().enumerate() {
-            let tree_error = |reason: &str| ObjectError::NotATree { category: category(), joint: j, reason: reason.into() };
+            let tree_error = |reason: &str| ObjectError::NotATree {
+                category: category(),
+                joint: j,
+                reason: reason.into(),
+            };
             if joint.child >= self.links.len() || joint.child == 0 {
                 return Err(tree_error("child is the root or out of range"));
             }
@@ -130,7 +134,11 @@ impl ArticulatedObject {
             if std::mem::replace(&mut seen[joint.child], true) {
                 return Err(tree_error("child already has a parent joint"));
             }
-            let joint_error = |reason: &str| ObjectError::BadJoint { category: category(), joint: j, reason: reason.into() };
+            let joint_error = |reason: &str| ObjectError::BadJoint {
+                category: category(),
+                joint: j,
+                reason: reason.into(),
+            };
             if (joint.axis.norm() - 1.0).abs() > 1e-4 {
                 return Err(joint_error("an axis that is not unit length"));
             }
@@ -141,7 +149,11 @@ impl ArticulatedObject {
         }
         if let Some(orphan) = seen.iter().skip(1).position(|s| !s) {
             let reason = format!("link {} has no parent joint", orphan + 1);
-            return Err(ObjectError::NotATree { category: category(), joint: self.joints.len(), reason });
+            return Err(ObjectError::NotATree {
+                category: category(),
+                joint: self.joints.len(),
+                reason,
+            });
         }
         Ok(())
     }

@@ -6,4 +6,3 @@ pub mod drawer;
 pub mod handle;
 
 pub use articulated::{ArticulatedObject, Joint, Link, ObjectError};
-

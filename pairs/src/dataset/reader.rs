@@ -119,13 +119,16 @@ impl<R: Read> PairReader<R> {
                             check_channel(&path, &channel)?;
                             self.pair_channel = Some(channel.id);
                         }
-                        Record::Message { header, data } if Some(header.channel_id) == self.pair_channel => {
+                        Record::Message { header, data }
+                            if Some(header.channel_id) == self.pair_channel =>
+                        {
                             let message = self.count;
-                            let record = decode_record(&data)
-                                .map_err(|reason| DatasetError::Decode { path: path.clone(), message, reason })?;
-                            let pair = record
-                                .into_pair()
-                                .map_err(|source| DatasetError::InvalidPair { path: path.clone(), source })?;
+                            let record = decode_record(&data).map_err(|reason| {
+                                DatasetError::Decode { path: path.clone(), message, reason }
+                            })?;
+                            let pair = record.into_pair().map_err(|source| {
+                                DatasetError::InvalidPair { path: path.clone(), source }
+                            })?;
                             self.count += 1;
                             return Ok(Some(pair));
                         }

@@ -114,7 +114,9 @@ impl PairRecord {
             scale: truth.motions.first().map_or(1.0, |m| m.scale),
             motions: truth.motions.iter().map(motion_record).collect(),
             flow: ByteBuf::from(f32_bytes(truth.flow.iter().flat_map(|v| v.iter().copied()))),
-            corr_mask: ByteBuf::from(truth.corr_mask.iter().map(|&m| u8::from(m)).collect::<Vec<_>>()),
+            corr_mask: ByteBuf::from(
+                truth.corr_mask.iter().map(|&m| u8::from(m)).collect::<Vec<_>>(),
+            ),
             corr_index: ByteBuf::from(
                 truth.corr_index.iter().flat_map(|i| i.to_le_bytes()).collect::<Vec<_>>(),
             ),
@@ -127,8 +129,14 @@ impl PairRecord {
     pub fn into_pair(self) -> Result<Pair, PairError> {
         let id = self.id;
         if self.schema_version != SCHEMA_VERSION {
-            let reason = format!("version {} (this reader knows {SCHEMA_VERSION})", self.schema_version);
-            return Err(PairError::Inconsistent { pair: id, field: "schema_version", index: 0, reason });
+            let reason =
+                format!("version {} (this reader knows {SCHEMA_VERSION})", self.schema_version);
+            return Err(PairError::Inconsistent {
+                pair: id,
+                field: "schema_version",
+                index: 0,
+                reason,
+            });
         }
         let p = cloud(&id, "p.points", self.p)?;
         let q = cloud(&id, "q.points", self.q)?;

@@ -72,7 +72,12 @@ pub fn part_colour(part: PartId) -> [u8; 3] {
 
 /// The JSON bytes of a `foxglove.PointCloud` of `points` coloured by `parts`, stamped at
 /// `sec` seconds and drawn at `offset_x` along x.
-pub fn point_cloud_message(points: &[Point3], parts: &[PartId], sec: u64, offset_x: Real) -> Vec<u8> {
+pub fn point_cloud_message(
+    points: &[Point3],
+    parts: &[PartId],
+    sec: u64,
+    offset_x: Real,
+) -> Vec<u8> {
     let mut data = Vec::with_capacity(points.len() * STRIDE);
     for (p, &part) in points.iter().zip(parts) {
         for c in p.coords.iter() {
@@ -81,7 +86,8 @@ pub fn point_cloud_message(points: &[Point3], parts: &[PartId], sec: u64, offset
         data.extend_from_slice(&part_colour(part));
         data.push(255);
     }
-    let field = |name: &str, offset: usize, kind: u8| json!({"name": name, "offset": offset, "type": kind});
+    let field =
+        |name: &str, offset: usize, kind: u8| json!({"name": name, "offset": offset, "type": kind});
     let message = json!({
         "timestamp": {"sec": sec, "nsec": 0},
         "frame_id": VIZ_FRAME,

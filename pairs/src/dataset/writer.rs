@@ -11,9 +11,13 @@ use mcap::records::MessageHeader;
 use mcap::{Compression, WriteOptions, Writer};
 
 use super::index::IndexRow;
-use super::manifest::{Counts, DatasetOrigin, FileEntry, Manifest, FORMAT_NAME, FORMAT_VERSION, MANIFEST_FILE};
+use super::manifest::{
+    Counts, DatasetOrigin, FileEntry, Manifest, FORMAT_NAME, FORMAT_VERSION, MANIFEST_FILE,
+};
 use super::schema::{encode_pair, PAIR_ENCODING, PAIR_SCHEMA, PAIR_TOPIC, SCHEMA_VERSION};
-use super::viz::{self, POINT_CLOUD_JSON_SCHEMA, POINT_CLOUD_SCHEMA, VIZ_OFFSET, VIZ_P_TOPIC, VIZ_Q_TOPIC};
+use super::viz::{
+    self, POINT_CLOUD_JSON_SCHEMA, POINT_CLOUD_SCHEMA, VIZ_OFFSET, VIZ_P_TOPIC, VIZ_Q_TOPIC,
+};
 use crate::error::DatasetError;
 use crate::pair::Pair;
 
@@ -89,8 +93,14 @@ impl DatasetWriter {
         let (input, truth) = (pair.input(), pair.truth());
         let messages = [
             (self.channels.pair, encode_pair(pair)),
-            (self.channels.viz_p, viz::point_cloud_message(&input.p.points, &truth.part_p, seq, -VIZ_OFFSET)),
-            (self.channels.viz_q, viz::point_cloud_message(&input.q.points, &truth.part_q, seq, VIZ_OFFSET)),
+            (
+                self.channels.viz_p,
+                viz::point_cloud_message(&input.p.points, &truth.part_p, seq, -VIZ_OFFSET),
+            ),
+            (
+                self.channels.viz_q,
+                viz::point_cloud_message(&input.q.points, &truth.part_q, seq, VIZ_OFFSET),
+            ),
         ];
         for (channel_id, data) in messages {
             let header = MessageHeader {
@@ -99,7 +109,9 @@ impl DatasetWriter {
                 log_time: seq * PAIR_PERIOD_NS,
                 publish_time: seq * PAIR_PERIOD_NS,
             };
-            self.mcap.write_to_known_channel(&header, &data).map_err(DatasetError::mcap(&mcap_path))?;
+            self.mcap
+                .write_to_known_channel(&header, &data)
+                .map_err(DatasetError::mcap(&mcap_path))?;
         }
         let index_path = partial(&self.dir, INDEX_FILE);
         self.index
@@ -128,7 +140,11 @@ impl DatasetWriter {
     pub fn finish(mut self, origin: DatasetOrigin) -> Result<Manifest, DatasetError> {
         let mcap_path = partial(&self.dir, PAIRS_FILE);
         self.mcap.finish().map_err(DatasetError::mcap(&mcap_path))?;
-        let file = self.mcap.into_inner().into_inner().map_err(|e| DatasetError::io(&mcap_path)(e.into_error()))?;
+        let file = self
+            .mcap
+            .into_inner()
+            .into_inner()
+            .map_err(|e| DatasetError::io(&mcap_path)(e.into_error()))?;
         file.sync_all().map_err(DatasetError::io(&mcap_path))?;
         let index_path = partial(&self.dir, INDEX_FILE);
         let index_file = self
@@ -176,7 +192,8 @@ fn add_channels(mcap: &mut Writer<BufWriter<File>>) -> mcap::McapResult<Channels
     // CBOR has no MCAP schema encoding: the channel has schema id 0 and names its layout in
     // its metadata (docs/FORMAT.md).
     let pair = mcap.add_channel(0, PAIR_TOPIC, PAIR_ENCODING, &pair_meta)?;
-    let schema = mcap.add_schema(POINT_CLOUD_SCHEMA, "jsonschema", POINT_CLOUD_JSON_SCHEMA.as_bytes())?;
+    let schema =
+        mcap.add_schema(POINT_CLOUD_SCHEMA, "jsonschema", POINT_CLOUD_JSON_SCHEMA.as_bytes())?;
     let viz_p = mcap.add_channel(schema, VIZ_P_TOPIC, "json", &BTreeMap::new())?;
     let viz_q = mcap.add_channel(schema, VIZ_Q_TOPIC, "json", &BTreeMap::new())?;
     Ok(Channels { pair, viz_p, viz_q })
