@@ -1,6 +1,6 @@
 //! Typed errors of the shared data model and of the dataset files.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// A pair record that breaks an invariant; names the pair and the field.
 #[derive(Debug, thiserror::Error, Clone, PartialEq)]
@@ -152,14 +152,13 @@ pub enum DatasetError {
 
 impl DatasetError {
     /// Wraps an I/O error with the file it concerns.
-    pub(crate) fn io(path: impl Into<PathBuf>) -> impl FnOnce(std::io::Error) -> Self {
-        let path = path.into();
-        move |source| Self::Io { path, source }
+    /// The path is copied only when an error occurs, so success paths stay allocation-free.
+    pub(crate) fn io(path: &Path) -> impl FnOnce(std::io::Error) -> Self + '_ {
+        move |source| Self::Io { path: path.into(), source }
     }
 
     /// Wraps an MCAP error with the file it concerns.
-    pub(crate) fn mcap(path: impl Into<PathBuf>) -> impl FnOnce(mcap::McapError) -> Self {
-        let path = path.into();
-        move |source| Self::Mcap { path, source }
+    pub(crate) fn mcap(path: &Path) -> impl FnOnce(mcap::McapError) -> Self + '_ {
+        move |source| Self::Mcap { path: path.into(), source }
     }
 }

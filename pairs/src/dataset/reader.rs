@@ -97,15 +97,15 @@ impl<R: Read> PairReader<R> {
 
     /// The next pair, `Ok(None)` at a clean end of the stream.
     fn next_pair(&mut self) -> Result<Option<Pair>, DatasetError> {
-        let path = self.path.clone();
+        let path = self.path.as_path();
         while let Some(event) = self.reader.next_event() {
-            match event.map_err(DatasetError::mcap(&path))? {
+            match event.map_err(DatasetError::mcap(path))? {
                 LinearReadEvent::ReadRequest(need) => {
                     let buf = self.reader.insert(need);
                     let n = loop {
                         match self.source.read(buf) {
                             Err(e) if e.kind() == ErrorKind::Interrupted => continue,
-                            other => break other.map_err(DatasetError::io(&path))?,
+                            other => break other.map_err(DatasetError::io(path))?,
                         }
                     };
                     self.reader.notify_read(n);
@@ -114,9 +114,9 @@ impl<R: Read> PairReader<R> {
                     if opcode != op::CHANNEL && opcode != op::MESSAGE {
                         continue;
                     }
-                    match mcap::parse_record(opcode, data).map_err(DatasetError::mcap(&path))? {
+                    match mcap::parse_record(opcode, data).map_err(DatasetError::mcap(path))? {
                         Record::Channel(channel) if channel.topic == PAIR_TOPIC => {
-                            check_channel(&path, &channel)?;
+                            check_channel(path, &channel)?;
                             self.pair_channel = Some(channel.id);
                         }
                         Record::Message { header, data }
@@ -124,10 +124,10 @@ impl<R: Read> PairReader<R> {
                         {
                             let message = self.count;
                             let record = decode_record(&data).map_err(|reason| {
-                                DatasetError::Decode { path: path.clone(), message, reason }
+                                DatasetError::Decode { path: path.into(), message, reason }
                             })?;
                             let pair = record.into_pair().map_err(|source| {
-                                DatasetError::InvalidPair { path: path.clone(), source }
+                                DatasetError::InvalidPair { path: path.into(), source }
                             })?;
                             self.count += 1;
                             return Ok(Some(pair));
@@ -139,11 +139,11 @@ impl<R: Read> PairReader<R> {
         }
         if self.pair_channel.is_none() {
             let reason = format!("no {PAIR_TOPIC} channel");
-            return Err(DatasetError::Schema { path, reason });
+            return Err(DatasetError::Schema { path: path.into(), reason });
         }
         match self.expected {
             Some(expected) if expected != self.count => {
-                Err(DatasetError::Truncated { path, expected, found: self.count })
+                Err(DatasetError::Truncated { path: path.into(), expected, found: self.count })
             }
             _ => Ok(None),
         }

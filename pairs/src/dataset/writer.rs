@@ -35,6 +35,8 @@ const PAIR_PERIOD_NS: u64 = 1_000_000_000;
 /// Writes one dataset folder, pair by pair, with bounded memory.
 pub struct DatasetWriter {
     dir: PathBuf,
+    mcap_path: PathBuf,
+    index_path: PathBuf,
     mcap: Writer<BufWriter<File>>,
     index: csv::Writer<BufWriter<File>>,
     channels: Channels,
@@ -78,6 +80,8 @@ impl DatasetWriter {
         let index_file = File::create(&index_path).map_err(DatasetError::io(&index_path))?;
         Ok(Self {
             dir: dir.into(),
+            mcap_path,
+            index_path,
             mcap,
             index: csv::Writer::from_writer(BufWriter::new(index_file)),
             channels,
@@ -89,7 +93,6 @@ impl DatasetWriter {
     /// Appends one pair: its record, its two visualisation clouds and its index row.
     pub fn write(&mut self, pair: &Pair) -> Result<(), DatasetError> {
         let seq = self.counts.pairs;
-        let mcap_path = partial(&self.dir, PAIRS_FILE);
         let (input, truth) = (pair.input(), pair.truth());
         let messages = [
             (self.channels.pair, encode_pair(pair)),
@@ -111,12 +114,11 @@ impl DatasetWriter {
             };
             self.mcap
                 .write_to_known_channel(&header, &data)
-                .map_err(DatasetError::mcap(&mcap_path))?;
+                .map_err(DatasetError::mcap(&self.mcap_path))?;
         }
-        let index_path = partial(&self.dir, INDEX_FILE);
         self.index
             .serialize(IndexRow::of(pair))
-            .map_err(|source| DatasetError::Csv { path: index_path, source })?;
+            .map_err(|source| DatasetError::Csv { path: self.index_path.clone(), source })?;
         let prov = pair.provenance();
         self.counts.pairs += 1;
         *self.counts.categories.entry(prov.category.clone()).or_default() += 1;
@@ -138,22 +140,21 @@ impl DatasetWriter {
     /// Closes the files, renames them into place, and writes `manifest.json` last, so that a
     /// folder with a manifest always holds a complete dataset.
     pub fn finish(mut self, origin: DatasetOrigin) -> Result<Manifest, DatasetError> {
-        let mcap_path = partial(&self.dir, PAIRS_FILE);
-        self.mcap.finish().map_err(DatasetError::mcap(&mcap_path))?;
+        let (mcap_path, index_path) = (&self.mcap_path, &self.index_path);
+        self.mcap.finish().map_err(DatasetError::mcap(mcap_path))?;
         let file = self
             .mcap
             .into_inner()
             .into_inner()
-            .map_err(|e| DatasetError::io(&mcap_path)(e.into_error()))?;
-        file.sync_all().map_err(DatasetError::io(&mcap_path))?;
-        let index_path = partial(&self.dir, INDEX_FILE);
+            .map_err(|e| DatasetError::io(mcap_path)(e.into_error()))?;
+        file.sync_all().map_err(DatasetError::io(mcap_path))?;
         let index_file = self
             .index
             .into_inner()
-            .map_err(|e| DatasetError::io(&index_path)(e.into_error()))?
+            .map_err(|e| DatasetError::io(index_path)(e.into_error()))?
             .into_inner()
-            .map_err(|e| DatasetError::io(&index_path)(e.into_error()))?;
-        index_file.sync_all().map_err(DatasetError::io(&index_path))?;
+            .map_err(|e| DatasetError::io(index_path)(e.into_error()))?;
+        index_file.sync_all().map_err(DatasetError::io(index_path))?;
 
         // An old manifest goes first: from here until the new one lands, the folder reads as
         // an unfinished dataset rather than as a finished one with mismatched files.
