@@ -15,7 +15,7 @@ fn bench(c: &mut Criterion) {
     group.bench_function("paper-size SF2F (875 pairs, N=512)", |b| {
         b.iter(|| {
             let dir = tempfile::tempdir().expect("tempdir");
-            generate_dataset(&config, dir.path(), false, |_| {}).expect("dataset")
+            generate_dataset(&config, dir.path(), false, None, |_| {}).expect("dataset")
         })
     });
     group.finish();

@@ -8,7 +8,7 @@ use pairs::dataset::Dataset;
 fn main() -> anyhow::Result<()> {
     let dir = tempfile::tempdir()?;
     let config = GeneratorConfig { objects: 2, points: 128, ..Default::default() };
-    let manifest = generate_dataset(&config, dir.path(), false, |_| {})?;
+    let manifest = generate_dataset(&config, dir.path(), false, None, |_| {})?;
     println!("wrote {} pairs to {}", manifest.counts.pairs, dir.path().display());
     let dataset = Dataset::open(dir.path())?;
     dataset.verify()?;

@@ -4,7 +4,7 @@ use serde::{Deserialize, Serialize};
 
 use pairs::PairKind;
 
-use crate::categories::{self, Category};
+use crate::categories::{self, Category, Split};
 
 /// Everything that determines a generated dataset; together with the generator version it
 /// makes the dataset reproducible byte for byte.
@@ -23,7 +23,9 @@ pub struct GeneratorConfig {
     pub points: u32,
     /// Dataset seed.
     pub seed: u64,
-    /// Categories to draw objects from, in turn; empty means every built-in category.
+    /// Category split to draw objects from (`test` for benchmarks, `train` for training).
+    pub split: Split,
+    /// Categories to draw objects from, in turn; empty means every category of `split`.
     pub categories: Vec<String>,
     /// Largest global rotation applied to each shape, degrees.
     pub pose_rotation_deg: f64,
@@ -44,6 +46,7 @@ impl Default for GeneratorConfig {
             pairs_per_object: 5,
             points: 512,
             seed: 0,
+            split: Split::Test,
             categories: Vec::new(),
             pose_rotation_deg: 15.0,
             pose_translation: 0.05,
@@ -120,7 +123,7 @@ impl GeneratorConfig {
     /// The categories objects are drawn from, in turn.
     pub fn categories(&self) -> Result<Vec<&'static Category>, ConfigError> {
         if self.categories.is_empty() {
-            return Ok(categories::CATEGORIES.iter().collect());
+            return Ok(categories::of_split(self.split));
         }
         self.categories
             .iter()

@@ -3,12 +3,13 @@
 
 use std::path::Path;
 
-use pairs::dataset::{DatasetOrigin, DatasetWriter, Manifest};
+use pairs::dataset::{DatasetOrigin, DatasetWriter, Manifest, Shard};
 use pairs::math::{Isometry3, Real};
 use pairs::parts::part_sizes;
 use pairs::{Cloud, DatasetError, Pair, PairError, PairInput, Provenance};
 use rayon::prelude::*;
 
+use crate::categories::split_table;
 use crate::config::{ConfigError, GeneratorConfig};
 use crate::kinematics::link_poses;
 use crate::label::{ground_truth, merge_links, Parts, Side};
@@ -16,6 +17,7 @@ use crate::objects::{ArticulatedObject, ObjectError};
 use crate::protocol::{candidate_pairs, draw_state, global_pose};
 use crate::sampling::SurfaceSampler;
 use crate::seed::{rng_for, Rng, Stream};
+use crate::shard::shard_objects;
 
 /// Version written into every pair's provenance and the manifest.
 pub const GENERATOR_VERSION: &str = env!("CARGO_PKG_VERSION");
@@ -58,6 +60,9 @@ pub enum GenerateError {
     /// Writing the dataset failed.
     #[error(transparent)]
     Dataset(#[from] DatasetError),
+    /// A shard was asked for that does not exist, or shards do not fit together.
+    #[error(transparent)]
+    Shard(#[from] crate::shard::ShardError),
 }
 
 /// A generated pair with the scene it was made from, for checks against the meshes.
@@ -193,18 +198,19 @@ fn make_pair(
     Ok(Some(GeneratedPair { pair, poses_p, poses_q, parts }))
 }
 
-/// Generates a whole dataset into `dir`, calling `progress` with the number of pairs
-/// written after each one. Existing output is kept unless `overwrite`, and replaced only
-/// once the new dataset is complete.
+/// Generates a dataset into `dir` (the whole dataset, or only `shard` of it), calling
+/// `progress` with the number of pairs written after each one. Existing output is kept
+/// unless `overwrite`, and replaced only once the new dataset is complete.
 pub fn generate_dataset(
     config: &GeneratorConfig,
     dir: &Path,
     overwrite: bool,
+    shard: Option<Shard>,
     mut progress: impl FnMut(u64),
 ) -> Result<Manifest, GenerateError> {
     config.validate()?;
+    let objects: Vec<u32> = shard_objects(config.objects, shard)?.collect();
     let mut writer = DatasetWriter::create(dir, overwrite)?;
-    let objects: Vec<u32> = (0..config.objects).collect();
     for batch in objects.chunks(BATCH_OBJECTS) {
         let generated: Vec<Vec<GeneratedPair>> =
             batch.par_iter().map(|&i| object_pairs(config, i)).collect::<Result<_, _>>()?;
@@ -213,10 +219,16 @@ pub fn generate_dataset(
             progress(writer.len());
         }
     }
-    let origin = DatasetOrigin {
+    Ok(writer.finish(dataset_origin(config, shard))?)
+}
+
+/// The manifest's record of what made a dataset (or one shard of it).
+pub fn dataset_origin(config: &GeneratorConfig, shard: Option<Shard>) -> DatasetOrigin {
+    DatasetOrigin {
         generator_version: GENERATOR_VERSION.into(),
         seed: config.seed,
         config: serde_json::to_value(config).expect("a config always serialises"),
-    };
-    Ok(writer.finish(origin)?)
+        splits: split_table(),
+        shard,
+    }
 }

@@ -17,6 +17,7 @@
 #![deny(missing_docs)]
 
 pub mod categories;
+pub mod check;
 pub mod config;
 pub mod generate;
 pub mod kinematics;
@@ -26,3 +27,4 @@ pub mod objects;
 pub mod protocol;
 pub mod sampling;
 pub mod seed;
+pub mod shard;

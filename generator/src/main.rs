@@ -138,7 +138,7 @@ fn run(args: Args) -> Result<()> {
     );
     bar.set_message(format!("generating {}", out.display()));
     let started = std::time::Instant::now();
-    let manifest = generate_dataset(&config, &out, args.force, |n| bar.set_position(n))
+    let manifest = generate_dataset(&config, &out, args.force, None, |n| bar.set_position(n))
         .with_context(|| format!("generating the dataset in {}", out.display()))?;
     bar.finish_and_clear();
     let bytes: u64 = manifest.files.values().map(|f| f.bytes).sum();

@@ -6,7 +6,7 @@ use pairs::dataset::{Dataset, INDEX_FILE, MANIFEST_FILE, PAIRS_FILE};
 
 fn generate_with_threads(threads: usize, dir: &std::path::Path, config: &GeneratorConfig) {
     let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("pool");
-    pool.install(|| generate_dataset(config, dir, false, |_| {})).expect("generate");
+    pool.install(|| generate_dataset(config, dir, false, None, |_| {})).expect("generate");
 }
 
 #[test]
@@ -45,11 +45,11 @@ fn existing_datasets_are_not_overwritten_by_default() {
     let config =
         GeneratorConfig { objects: 1, points: 64, min_part_points: 4, ..Default::default() };
     let dir = tempfile::tempdir().expect("tempdir");
-    generate_dataset(&config, dir.path(), false, |_| {}).expect("first");
+    generate_dataset(&config, dir.path(), false, None, |_| {}).expect("first");
     let before = std::fs::read(dir.path().join(PAIRS_FILE)).expect("read");
     let again = GeneratorConfig { seed: 9, ..config };
-    assert!(generate_dataset(&again, dir.path(), false, |_| {}).is_err());
+    assert!(generate_dataset(&again, dir.path(), false, None, |_| {}).is_err());
     assert_eq!(std::fs::read(dir.path().join(PAIRS_FILE)).expect("read"), before);
-    generate_dataset(&again, dir.path(), true, |_| {}).expect("forced");
+    generate_dataset(&again, dir.path(), true, None, |_| {}).expect("forced");
     assert_ne!(std::fs::read(dir.path().join(PAIRS_FILE)).expect("read"), before);
 }

@@ -14,6 +14,8 @@ fn origin() -> DatasetOrigin {
         generator_version: "test".into(),
         seed: 7,
         config: serde_json::json!({"points": 32}),
+        splits: Default::default(),
+        shard: None,
     }
 }
 

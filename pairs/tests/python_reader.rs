@@ -40,6 +40,8 @@ fn the_documented_python_snippet_reads_a_pair() {
             generator_version: "test".into(),
             seed: 0,
             config: serde_json::json!({}),
+            splits: Default::default(),
+            shard: None,
         })
         .expect("finish");
 

@@ -3,7 +3,7 @@
 use pairs::math::Point3;
 use rand::Rng as _;
 
-use super::Category;
+use super::catalog::{Category, TEST};
 use crate::mesh::Mesh;
 use crate::objects::door::{front_door, HingeSide};
 use crate::objects::drawer::drawer;
@@ -15,6 +15,7 @@ pub const CATEGORY: Category = Category {
     name: "cabinet",
     description:
         "carcass with a prismatic drawer on top and a revolute door below (hinge left or right)",
+    splits: TEST,
     build,
 };
 

@@ -5,7 +5,7 @@ use pairs::math::{Point3, Vector3};
 use pairs::JointKind;
 use rand::Rng as _;
 
-use super::Category;
+use super::catalog::{Category, TRAIN_AND_TEST};
 use crate::mesh::Mesh;
 use crate::objects::{ArticulatedObject, Joint, Link};
 use crate::seed::Rng;
@@ -14,6 +14,7 @@ use crate::seed::Rng;
 pub const CATEGORY: Category = Category {
     name: "laptop",
     description: "base with keyboard and trackpad; lid with screen, revolute about the back edge",
+    splits: TRAIN_AND_TEST,
     build,
 };
 

@@ -4,7 +4,7 @@ use pairs::math::{Isometry3, Point3, Real, Vector3};
 use pairs::JointKind;
 use rand::Rng as _;
 
-use super::Category;
+use super::catalog::{Category, TEST};
 use crate::mesh::Mesh;
 use crate::objects::{ArticulatedObject, Joint, Link};
 use crate::seed::Rng;
@@ -13,6 +13,7 @@ use crate::seed::Rng;
 pub const CATEGORY: Category = Category {
     name: "scissors",
     description: "two blades with handle loops; the upper blade is revolute about the pivot screw",
+    splits: TEST,
     build,
 };
 
@@ -37,7 +38,7 @@ fn blade(length: Real, width: Real, thickness: Real, z: Real, side: Real) -> Mes
             Vector3::new(-0.5 * shank_len, side * 0.3 * loop_r, z),
             Vector3::z() * (side * -0.3),
         ),
-        Vector3::new(0.55 * shank_len, 0.3 * width, 2.0 * half_t),
+        Vector3::new(0.55 * shank_len, 0.3 * width, half_t),
     );
     let ring = Mesh::ring(
         Point3::new(-shank_len - 0.6 * loop_r, side * 1.1 * loop_r, z),
@@ -54,9 +55,11 @@ fn build(rng: &mut Rng) -> ArticulatedObject {
     let thickness = rng.random_range(0.002..0.004);
     let max_open = rng.random_range(40.0f32..65.0).to_radians();
     let mut lower = blade(length, width, thickness, 0.0, 1.0);
+    // The pivot screw's head shows below the lower blade; it stops at the blade's top face
+    // so that the upper blade turns on it without the two passing through each other.
     lower.append(Mesh::cylinder(
         Point3::new(0.0, 0.0, -1.5 * thickness),
-        Point3::new(0.0, 0.0, 2.5 * thickness),
+        Point3::new(0.0, 0.0, 0.5 * thickness),
         0.25 * width,
         10,
     ));

@@ -19,7 +19,7 @@ pub fn drawer(
     max_travel: Real,
 ) -> (Mesh, Joint) {
     let back = front - depth;
-    let (bx0, bx1, by0, by1) = (x0 + wall, x1 - wall, y0 + wall, y1 - 1.5 * wall);
+    let (bx0, bx1, by0, by1) = (x0 + wall, x1 - wall, y0, y1 - 1.5 * wall);
     let mesh = Mesh::union([
         Mesh::cuboid(Point3::new(x0, y0, front), Point3::new(x1, y1, front + wall)),
         Mesh::cuboid(Point3::new(bx0, by0, back), Point3::new(bx1, by0 + wall, front)),

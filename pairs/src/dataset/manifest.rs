@@ -49,6 +49,22 @@ pub struct DatasetOrigin {
     pub seed: u64,
     /// The full configuration that made the dataset, as JSON.
     pub config: serde_json::Value,
+    /// The generator's named category splits (`train`, `validation`, `test`), each with its
+    /// categories, so that a reader can tell which categories a model never saw.
+    #[serde(default)]
+    pub splits: BTreeMap<String, Vec<String>>,
+    /// Which part of a larger dataset this folder holds; absent for a whole dataset.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub shard: Option<Shard>,
+}
+
+/// One of `count` shards of a dataset: the objects of contiguous range `index` of `count`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Shard {
+    /// Zero-based index of the shard.
+    pub index: u32,
+    /// Number of shards the dataset is split into.
+    pub count: u32,
 }
 
 /// The contents of `manifest.json`.
