@@ -82,6 +82,12 @@ pub enum ConfigError {
 }
 
 impl GeneratorConfig {
+    /// The defaults with the training split: what the training stream and
+    /// `generator --split train` use unless told otherwise.
+    pub fn training() -> Self {
+        Self { split: Split::Train, ..Self::default() }
+    }
+
     /// Checks every field; the first problem is returned.
     pub fn validate(&self) -> Result<(), ConfigError> {
         let invalid =

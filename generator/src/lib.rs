@@ -19,6 +19,7 @@
 pub mod categories;
 pub mod check;
 pub mod config;
+pub mod gallery;
 pub mod generate;
 pub mod kinematics;
 pub mod label;
@@ -28,3 +29,4 @@ pub mod protocol;
 pub mod sampling;
 pub mod seed;
 pub mod shard;
+pub mod stream;

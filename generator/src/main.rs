@@ -3,22 +3,33 @@
 use std::path::PathBuf;
 
 use anyhow::{bail, Context, Result};
-use clap::Parser;
-use generator::categories::CATEGORIES;
+use clap::{Parser, Subcommand};
+use generator::categories::{Split, CATEGORIES};
 use generator::config::GeneratorConfig;
+use generator::gallery::write_gallery;
 use generator::generate::generate_dataset;
+use generator::shard::{merge_shards, parse_shard};
 use indicatif::{ProgressBar, ProgressStyle};
+use pairs::dataset::{Manifest, Shard};
 use pairs::PairKind;
 
 /// Generate a dataset of articulated shape pairs (P, Q) with ground-truth parts, motions,
 /// flow, correspondences and joints, following the test protocol of Yi et al. 2018.
 ///
 /// With no arguments it writes the paper-size SF2F set (175 objects, 875 pairs, N = 512,
-/// seed 0) to datasets/sf2f. Flags override the values of --config, which override the
-/// built-in defaults (datasets/sf2f.toml lists them).
+/// seed 0, held-out test categories) to datasets/sf2f. Flags override the values of
+/// --config, which override the built-in defaults (datasets/sf2f.toml lists them).
+///
+/// Examples:
+///   generator --split train -n 20000 --out datasets/train   a training set on disk
+///   generator --shard 3/8 --out shards/3                    shard 3 of 8 (cluster array job)
+///   generator merge shards/* --out datasets/sf2f            shards into one dataset
+///   generator --gallery                                     reports/gallery/*.png
 #[derive(Debug, Parser)]
-#[command(version, about, long_about)]
+#[command(version, about, long_about, args_conflicts_with_subcommands = true)]
 struct Args {
+    #[command(subcommand)]
+    command: Option<Command>,
     /// TOML file with any of the config fields (see datasets/sf2f.toml).
     #[arg(short, long, value_name = "FILE")]
     config: Option<PathBuf>,
@@ -40,11 +51,19 @@ struct Args {
     /// Dataset seed: the same config and seed give byte-identical files.
     #[arg(short, long)]
     seed: Option<u64>,
-    /// Comma-separated categories to draw objects from in turn (default: all; see
-    /// --list-categories).
+    /// Category split: test (held-out benchmark categories), train or validation.
+    #[arg(long)]
+    split: Option<Split>,
+    /// Comma-separated categories to draw objects from in turn (default: every category of
+    /// the split; see --list-categories). A name listed twice is drawn twice as often.
     #[arg(long, value_delimiter = ',')]
     categories: Option<Vec<String>>,
-    /// Output folder [default: datasets/<kind>, e.g. datasets/sf2f].
+    /// Make only shard I of N (I from 0): a contiguous range of the objects, for one task
+    /// of a cluster array job; `generator merge` joins the shards.
+    #[arg(long, value_name = "I/N", value_parser = parse_shard_arg)]
+    shard: Option<Shard>,
+    /// Output folder [default: datasets/<kind>, or datasets/<kind>-<split> for train and
+    /// validation; reports/gallery with --gallery].
     #[arg(short, long, value_name = "DIR")]
     out: Option<PathBuf>,
     /// Worker threads [default: all cores]; the output does not depend on it.
@@ -53,12 +72,37 @@ struct Args {
     /// Replace an existing dataset in the output folder (only once the new one is complete).
     #[arg(long)]
     force: bool,
-    /// List the built-in categories and exit.
+    /// List the built-in categories with their splits and exit.
     #[arg(long)]
     list_categories: bool,
+    /// Draw every category closed and opened into PNGs (reports/gallery) and exit.
+    #[arg(long)]
+    gallery: bool,
     /// Print the resolved config as TOML and exit.
     #[arg(long)]
     print_config: bool,
+}
+
+/// Subcommands besides generating.
+#[derive(Debug, Subcommand)]
+enum Command {
+    /// Merge the shard folders of one sharded run into a dataset byte-identical to the
+    /// unsharded run (every shard is verified against its checksums first).
+    Merge {
+        /// The shard folders, in any order; each of 0..N exactly once.
+        #[arg(required = true, value_name = "SHARD_DIR")]
+        shards: Vec<PathBuf>,
+        /// Folder of the merged dataset.
+        #[arg(short, long, value_name = "DIR")]
+        out: PathBuf,
+        /// Replace an existing dataset in --out (only once the merged one is complete).
+        #[arg(long)]
+        force: bool,
+    },
+}
+
+fn parse_shard_arg(s: &str) -> Result<Shard, String> {
+    parse_shard(s).map_err(|e| e.to_string())
 }
 
 fn parse_kind(s: &str) -> Result<PairKind, String> {
@@ -85,7 +129,7 @@ impl Args {
         macro_rules! set {
             ($($field:ident),*) => { $(if let Some(v) = &self.$field { config.$field = v.clone(); })* };
         }
-        set!(kind, objects, pairs_per_object, states_per_object, points, seed, categories);
+        set!(kind, objects, pairs_per_object, states_per_object, points, seed, split, categories);
         Ok(config)
     }
 }
@@ -102,24 +146,15 @@ fn main() {
 }
 
 fn run(args: Args) -> Result<()> {
+    if let Some(Command::Merge { shards, out, force }) = &args.command {
+        return merge(shards, out, *force);
+    }
     if args.list_categories {
         for c in CATEGORIES {
-            println!("{:<12} {}", c.name, c.description);
+            let splits: Vec<&str> = c.splits.iter().map(|s| s.as_str()).collect();
+            println!("{:<16} {:<16} {}", c.name, splits.join(","), c.description);
         }
         return Ok(());
-    }
-    let config = args.config()?;
-    if args.print_config {
-        print!("{}", toml::to_string(&config).context("formatting the config")?);
-        return Ok(());
-    }
-    config.validate().context("checking the config")?;
-    let out = args
-        .out
-        .clone()
-        .unwrap_or_else(|| PathBuf::from("datasets").join(config.kind.as_str().to_lowercase()));
-    if !args.force && out.join(pairs::dataset::MANIFEST_FILE).exists() {
-        bail!("{} already holds a dataset; pass --force to replace it", out.display());
     }
     if let Some(threads) = args.threads {
         if threads == 0 {
@@ -130,25 +165,87 @@ fn run(args: Args) -> Result<()> {
             .build_global()
             .context("starting the thread pool")?;
     }
-    let bar = ProgressBar::new(config.total_pairs()).with_style(
-        ProgressStyle::with_template(
-            "{msg} [{elapsed_precise}] {wide_bar} {pos}/{len} pairs ({eta})",
-        )
-        .expect("the template is valid"),
+    if args.gallery {
+        let dir = args.out.clone().unwrap_or_else(|| PathBuf::from("reports/gallery"));
+        let bar = progress_bar(CATEGORIES.len() as u64, "categories");
+        let written = write_gallery(&dir, args.seed.unwrap_or(0), |c| {
+            bar.set_message(c.name);
+            bar.inc(1);
+        })?;
+        bar.finish_and_clear();
+        println!("wrote {} files to {}", written.len(), dir.display());
+        return Ok(());
+    }
+    let config = args.config()?;
+    if args.print_config {
+        print!("{}", toml::to_string(&config).context("formatting the config")?);
+        return Ok(());
+    }
+    config.validate().context("checking the config")?;
+    let out = args.out.clone().unwrap_or_else(|| default_out(&config));
+    if !args.force && out.join(pairs::dataset::MANIFEST_FILE).exists() {
+        bail!("{} already holds a dataset; pass --force to replace it", out.display());
+    }
+    let objects = generator::shard::shard_objects(config.objects, args.shard)?;
+    let bar = progress_bar(
+        u64::from(objects.end - objects.start) * u64::from(config.pairs_per_object),
+        "pairs",
     );
     bar.set_message(format!("generating {}", out.display()));
     let started = std::time::Instant::now();
-    let manifest = generate_dataset(&config, &out, args.force, None, |n| bar.set_position(n))
+    let manifest = generate_dataset(&config, &out, args.force, args.shard, |n| bar.set_position(n))
         .with_context(|| format!("generating the dataset in {}", out.display()))?;
     bar.finish_and_clear();
+    report(&manifest, &out, started);
+    Ok(())
+}
+
+/// Where a dataset goes unless --out says otherwise.
+fn default_out(config: &GeneratorConfig) -> PathBuf {
+    let kind = config.kind.as_str().to_lowercase();
+    match config.split {
+        Split::Test => PathBuf::from("datasets").join(kind),
+        split => PathBuf::from("datasets").join(format!("{kind}-{split}")),
+    }
+}
+
+/// `generator merge`.
+fn merge(shards: &[PathBuf], out: &std::path::Path, force: bool) -> Result<()> {
+    if !force && out.join(pairs::dataset::MANIFEST_FILE).exists() {
+        bail!("{} already holds a dataset; pass --force to replace it", out.display());
+    }
+    let bar = progress_bar(0, "pairs");
+    bar.set_message(format!("merging into {}", out.display()));
+    let started = std::time::Instant::now();
+    let manifest = merge_shards(shards, out, force, |n| bar.set_position(n))
+        .with_context(|| format!("merging {} shards into {}", shards.len(), out.display()))?;
+    bar.finish_and_clear();
+    report(&manifest, out, started);
+    Ok(())
+}
+
+/// A progress bar counting `unit`.
+fn progress_bar(len: u64, unit: &str) -> ProgressBar {
+    let template =
+        format!("{{msg}} [{{elapsed_precise}}] {{wide_bar}} {{pos}}/{{len}} {unit} ({{eta}})");
+    ProgressBar::new(len)
+        .with_style(ProgressStyle::with_template(&template).expect("the template is valid"))
+}
+
+/// Prints what was written.
+fn report(manifest: &Manifest, out: &std::path::Path, started: std::time::Instant) {
     let bytes: u64 = manifest.files.values().map(|f| f.bytes).sum();
+    let shard = manifest
+        .origin
+        .shard
+        .map(|s| format!(" (shard {}/{})", s.index, s.count))
+        .unwrap_or_default();
     println!(
-        "wrote {} pairs of {} objects to {} ({:.1} MiB) in {:.2} s",
+        "wrote {} pairs of {} objects{shard} to {} ({:.1} MiB) in {:.2} s",
         manifest.counts.pairs,
         manifest.counts.objects,
         out.display(),
         bytes as f64 / (1 << 20) as f64,
         started.elapsed().as_secs_f64()
     );
-    Ok(())
 }

@@ -33,6 +33,23 @@ impl Split {
     }
 }
 
+impl std::str::FromStr for Split {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Split::ALL
+            .into_iter()
+            .find(|split| split.as_str().eq_ignore_ascii_case(s))
+            .ok_or_else(|| format!("unknown split {s:?} (train, validation or test)"))
+    }
+}
+
+impl std::fmt::Display for Split {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.as_str())
+    }
+}
+
 /// Test categories only.
 pub const TEST: &[Split] = &[Split::Test];
 /// Training categories only.
