@@ -17,7 +17,9 @@ use pairs::math::{Point3, Real};
 use pairs::parts::part_sizes;
 use parry3d::query::PointQuery;
 use parry3d::shape::TriMesh;
-use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
+
+mod common;
+use common::for_seeds;
 
 /// A child link may float at most this far from its parent (fraction of the object's size).
 const GAP_TOLERANCE: Real = 0.01;
@@ -34,18 +36,6 @@ fn categories() -> Vec<&'static Category> {
         CATEGORIES.iter().filter(|c| only.as_deref().is_none_or(|o| o == c.name)).collect();
     assert!(!chosen.is_empty(), "no category called {only:?}");
     chosen
-}
-
-/// Runs `check` on object seeds drawn by a seeded property-test runner.
-fn for_seeds(cases: u32, check: impl Fn(u64) -> Result<(), String>) {
-    let config = Config { cases, failure_persistence: None, ..Config::default() };
-    let rng = TestRng::deterministic_rng(RngAlgorithm::ChaCha);
-    let mut runner = TestRunner::new_with_rng(config, rng);
-    runner
-        .run(&(0u64..1_000_000), |seed| {
-            check(seed).map_err(proptest::test_runner::TestCaseError::fail)
-        })
-        .unwrap_or_else(|e| panic!("{e}"));
 }
 
 fn build(category: &Category, seed: u64) -> ArticulatedObject {

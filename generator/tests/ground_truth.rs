@@ -9,6 +9,9 @@ use pairs::parts::part_sizes;
 use parry3d::query::PointQuery;
 use parry3d::shape::TriMesh;
 
+mod common;
+use common::for_seeds;
+
 fn config_for(category: &str) -> GeneratorConfig {
     GeneratorConfig {
         objects: 2,
@@ -19,52 +22,52 @@ fn config_for(category: &str) -> GeneratorConfig {
     }
 }
 
-#[test]
-fn motions_map_p_onto_q_surface_for_every_category() {
-    for category in CATEGORIES {
-        let config = config_for(category.name);
-        for object_index in 0..config.objects {
-            let object = build_object(&config, object_index).expect("object");
-            for generated in object_pairs(&config, object_index).expect("pairs") {
-                let (input, truth) = (generated.pair.input(), generated.pair.truth());
-                let norm_q = input.q.normalisation;
-                // Q's posed mesh in Q's normalised frame, one mesh per part.
-                for part in 0..truth.num_parts() {
-                    let (mut vertices, mut indices) = (Vec::new(), Vec::new());
-                    for (link, l) in object.links.iter().enumerate() {
-                        if usize::from(generated.parts.of_link[link]) != part {
-                            continue;
-                        }
-                        let offset = vertices.len() as u32;
-                        vertices.extend(
-                            l.mesh
-                                .vertices
-                                .iter()
-                                .map(|v| norm_q.apply(&(generated.poses_q[link] * v))),
-                        );
-                        indices.extend(l.mesh.triangles.iter().map(|t| t.map(|i| i + offset)));
-                    }
-                    let mesh = TriMesh::new(vertices, indices).expect("valid mesh");
-                    for (i, p) in input.p.points.iter().enumerate() {
-                        if usize::from(truth.part_p[i]) != part {
-                            continue;
-                        }
-                        let moved: Point3 = truth.motions[part].apply(p);
-                        let d = mesh.distance_to_local_point(&moved, false);
-                        assert!(
-                            d < 1e-4,
-                            "{}: point {i} of part {part} lands {d} from Q's surface",
-                            input.id
-                        );
-                        assert!(
-                            (moved - p - truth.flow[i]).norm() < 1e-5,
-                            "{}: flow {i}",
-                            input.id
-                        );
-                    }
+/// Checks that every pair of object 0 of `config` maps P onto Q's posed surface, part by
+/// part, and that the flow is the motion minus the position.
+fn check_motions(config: &GeneratorConfig) -> Result<(), String> {
+    let object = build_object(config, 0).map_err(|e| e.to_string())?;
+    for generated in object_pairs(config, 0).map_err(|e| e.to_string())? {
+        let (input, truth) = (generated.pair.input(), generated.pair.truth());
+        let norm_q = input.q.normalisation;
+        // Q's posed mesh in Q's normalised frame, one mesh per part.
+        for part in 0..truth.num_parts() {
+            let (mut vertices, mut indices) = (Vec::new(), Vec::new());
+            for (link, l) in object.links.iter().enumerate() {
+                if usize::from(generated.parts.of_link[link]) != part {
+                    continue;
+                }
+                let offset = vertices.len() as u32;
+                let posed =
+                    l.mesh.vertices.iter().map(|v| norm_q.apply(&(generated.poses_q[link] * v)));
+                vertices.extend(posed);
+                indices.extend(l.mesh.triangles.iter().map(|t| t.map(|i| i + offset)));
+            }
+            let mesh = TriMesh::new(vertices, indices).map_err(|e| e.to_string())?;
+            for (i, p) in input.p.points.iter().enumerate() {
+                if usize::from(truth.part_p[i]) != part {
+                    continue;
+                }
+                let moved: Point3 = truth.motions[part].apply(p);
+                let d = mesh.distance_to_local_point(&moved, false);
+                if d >= 1e-4 {
+                    return Err(format!(
+                        "{}: point {i} of part {part} lands {d} from Q's surface",
+                        input.id
+                    ));
+                }
+                if (moved - p - truth.flow[i]).norm() >= 1e-5 {
+                    return Err(format!("{}: flow {i} is not the motion", input.id));
                 }
             }
         }
+    }
+    Ok(())
+}
+
+#[test]
+fn motions_map_p_onto_q_surface_for_every_category_over_many_seeds() {
+    for category in CATEGORIES {
+        for_seeds(4, |seed| check_motions(&GeneratorConfig { seed, ..config_for(category.name) }));
     }
 }
 
