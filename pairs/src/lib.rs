@@ -36,6 +36,7 @@ pub mod ground_truth;
 pub mod joints;
 pub mod math;
 pub mod method;
+pub mod metrics;
 pub mod pair;
 pub mod parts;
 pub mod synthetic;

@@ -1,0 +1,47 @@
+//! Metrics shared by the evaluator and the model's trainer (docs/METRICS.md gives each
+//! formula and convention): flow errors ([`flow`]) and segmentation scores
+//! ([`segmentation`]). Every function is pure and checks its inputs' lengths.
+
+pub mod flow;
+pub mod segmentation;
+
+pub use flow::{end_point_errors, epe, pcc, pcc_at, pcc_auc, PCC_STEP, PCC_THRESHOLDS};
+pub use segmentation::{matched_iou, rand_index, PartMatching};
+
+/// Inputs a metric cannot score.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum MetricError {
+    /// A prediction and its ground truth differ in length.
+    #[error("{what}: prediction has {predicted} entries, ground truth {truth}")]
+    LengthMismatch {
+        /// Which quantity (`flow`, `segments`).
+        what: &'static str,
+        /// Entries predicted.
+        predicted: usize,
+        /// Entries in the ground truth.
+        truth: usize,
+    },
+    /// Nothing to score.
+    #[error("{0}: no points")]
+    Empty(&'static str),
+    /// A predicted value is NaN or infinite.
+    #[error("{what}: entry {index} is not finite")]
+    NotFinite {
+        /// Which quantity.
+        what: &'static str,
+        /// First bad entry.
+        index: usize,
+    },
+}
+
+/// Checks that `predicted` and `truth` have one equal, non-zero length.
+fn check_lengths(what: &'static str, predicted: usize, truth: usize) -> Result<(), MetricError> {
+    if predicted != truth {
+        return Err(MetricError::LengthMismatch { what, predicted, truth });
+    }
+    if truth == 0 {
+        return Err(MetricError::Empty(what));
+    }
+    Ok(())
+}
