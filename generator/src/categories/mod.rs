@@ -2,9 +2,17 @@
 
 mod catalog;
 
+mod box_with_lid;
 mod cabinet;
 mod laptop;
+mod mailbox;
+mod piano;
 mod scissors;
+mod suitcase;
+mod toilet;
+mod toolbox;
+mod trash_can;
+mod usb_stick;
 
 pub use catalog::{find, of_split, split_table, Category, Split};
 
@@ -14,6 +22,14 @@ pub const CATEGORIES: &[Category] = &[
     laptop::CATEGORY,
     cabinet::CATEGORY,
     scissors::CATEGORY,
+    box_with_lid::CATEGORY,
+    trash_can::CATEGORY,
+    toilet::CATEGORY,
+    suitcase::CATEGORY,
+    usb_stick::CATEGORY,
     // Training categories.
+    piano::CATEGORY,
+    mailbox::CATEGORY,
     // Validation categories.
+    toolbox::CATEGORY,
 ];
