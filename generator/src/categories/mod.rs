@@ -2,9 +2,18 @@
 
 mod catalog;
 
+mod book;
 mod cabinet;
+mod eyeglasses;
+mod flip_phone;
+mod folding_knife;
+mod folding_table;
 mod laptop;
+mod pliers;
+mod printer;
 mod scissors;
+mod stapler;
+mod step_ladder;
 
 pub use catalog::{find, of_split, split_table, Category, Split};
 
@@ -14,6 +23,15 @@ pub const CATEGORIES: &[Category] = &[
     laptop::CATEGORY,
     cabinet::CATEGORY,
     scissors::CATEGORY,
+    pliers::CATEGORY,
+    folding_knife::CATEGORY,
+    flip_phone::CATEGORY,
+    eyeglasses::CATEGORY,
+    stapler::CATEGORY,
     // Training categories.
+    book::CATEGORY,
+    folding_table::CATEGORY,
+    step_ladder::CATEGORY,
     // Validation categories.
+    printer::CATEGORY,
 ];

@@ -1,8 +1,11 @@
 //! Articulated objects and the building blocks categories are made of, one family per file.
 
 pub mod articulated;
+pub mod bracket;
 pub mod door;
 pub mod drawer;
 pub mod handle;
+pub mod hinge;
+pub mod profile;
 
 pub use articulated::{ArticulatedObject, Joint, Link, ObjectError};
