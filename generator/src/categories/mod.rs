@@ -2,12 +2,21 @@
 
 mod catalog;
 
+mod book;
 mod box_with_lid;
 mod cabinet;
+mod eyeglasses;
+mod flip_phone;
+mod folding_knife;
+mod folding_table;
 mod laptop;
 mod mailbox;
 mod piano;
+mod pliers;
+mod printer;
 mod scissors;
+mod stapler;
+mod step_ladder;
 mod suitcase;
 mod toilet;
 mod toolbox;
@@ -23,13 +32,22 @@ pub const CATEGORIES: &[Category] = &[
     cabinet::CATEGORY,
     scissors::CATEGORY,
     box_with_lid::CATEGORY,
-    trash_can::CATEGORY,
-    toilet::CATEGORY,
+    eyeglasses::CATEGORY,
+    flip_phone::CATEGORY,
+    folding_knife::CATEGORY,
+    pliers::CATEGORY,
+    stapler::CATEGORY,
     suitcase::CATEGORY,
+    toilet::CATEGORY,
+    trash_can::CATEGORY,
     usb_stick::CATEGORY,
-    // Training categories.
-    piano::CATEGORY,
+    // Training categories: random articulated assemblies, then everyday objects.
+    book::CATEGORY,
+    folding_table::CATEGORY,
     mailbox::CATEGORY,
+    piano::CATEGORY,
+    step_ladder::CATEGORY,
     // Validation categories.
+    printer::CATEGORY,
     toolbox::CATEGORY,
 ];
