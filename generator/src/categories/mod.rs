@@ -3,8 +3,17 @@
 mod catalog;
 
 mod cabinet;
+mod car;
+mod dishwasher;
 mod laptop;
+mod microwave;
+mod oven;
+mod refrigerator;
+mod safe;
 mod scissors;
+mod sliding_window;
+mod wardrobe;
+mod washing_machine;
 
 pub use catalog::{find, of_split, split_table, Category, Split};
 
@@ -14,6 +23,15 @@ pub const CATEGORIES: &[Category] = &[
     laptop::CATEGORY,
     cabinet::CATEGORY,
     scissors::CATEGORY,
+    refrigerator::CATEGORY,
+    microwave::CATEGORY,
+    oven::CATEGORY,
+    washing_machine::CATEGORY,
+    sliding_window::CATEGORY,
+    car::CATEGORY,
     // Training categories.
+    wardrobe::CATEGORY,
+    dishwasher::CATEGORY,
     // Validation categories.
+    safe::CATEGORY,
 ];

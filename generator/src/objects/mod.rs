@@ -1,8 +1,15 @@
 //! Articulated objects and the building blocks categories are made of, one family per file.
 
 pub mod articulated;
+pub mod car_body;
+pub mod controls;
 pub mod door;
 pub mod drawer;
 pub mod handle;
+pub mod joints;
+pub mod panel;
+pub mod rack;
+pub mod round;
+pub mod shell;
 
 pub use articulated::{ArticulatedObject, Joint, Link, ObjectError};
