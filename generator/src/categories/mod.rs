@@ -5,16 +5,23 @@ mod catalog;
 mod book;
 mod box_with_lid;
 mod cabinet;
+mod car;
+mod dishwasher;
 mod eyeglasses;
 mod flip_phone;
 mod folding_knife;
 mod folding_table;
 mod laptop;
 mod mailbox;
+mod microwave;
+mod oven;
 mod piano;
 mod pliers;
 mod printer;
+mod refrigerator;
+mod safe;
 mod scissors;
+mod sliding_window;
 mod stapler;
 mod step_ladder;
 mod suitcase;
@@ -22,6 +29,8 @@ mod toilet;
 mod toolbox;
 mod trash_can;
 mod usb_stick;
+mod wardrobe;
+mod washing_machine;
 
 pub use catalog::{find, of_split, split_table, Category, Split};
 
@@ -32,22 +41,31 @@ pub const CATEGORIES: &[Category] = &[
     cabinet::CATEGORY,
     scissors::CATEGORY,
     box_with_lid::CATEGORY,
+    car::CATEGORY,
     eyeglasses::CATEGORY,
     flip_phone::CATEGORY,
     folding_knife::CATEGORY,
+    microwave::CATEGORY,
+    oven::CATEGORY,
     pliers::CATEGORY,
+    refrigerator::CATEGORY,
+    sliding_window::CATEGORY,
     stapler::CATEGORY,
     suitcase::CATEGORY,
     toilet::CATEGORY,
     trash_can::CATEGORY,
     usb_stick::CATEGORY,
+    washing_machine::CATEGORY,
     // Training categories: random articulated assemblies, then everyday objects.
     book::CATEGORY,
+    dishwasher::CATEGORY,
     folding_table::CATEGORY,
     mailbox::CATEGORY,
     piano::CATEGORY,
     step_ladder::CATEGORY,
+    wardrobe::CATEGORY,
     // Validation categories.
     printer::CATEGORY,
+    safe::CATEGORY,
     toolbox::CATEGORY,
 ];

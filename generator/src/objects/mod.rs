@@ -2,14 +2,21 @@
 
 pub mod articulated;
 pub mod bracket;
+pub mod car_body;
+pub mod carcass;
 pub mod container;
+pub mod controls;
 pub mod door;
 pub mod drawer;
 pub mod handle;
 pub mod hinge;
+pub mod joints;
 pub mod keyboard;
 pub mod motion;
+pub mod panel;
 pub mod profile;
+pub mod rack;
+pub mod round;
 pub mod shell;
 
 pub use articulated::{ArticulatedObject, Joint, Link, ObjectError};
