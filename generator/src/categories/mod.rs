@@ -2,6 +2,7 @@
 
 mod catalog;
 
+mod assembly;
 mod cabinet;
 mod laptop;
 mod scissors;
@@ -15,5 +16,6 @@ pub const CATEGORIES: &[Category] = &[
     cabinet::CATEGORY,
     scissors::CATEGORY,
     // Training categories.
+    assembly::CATEGORY,
     // Validation categories.
 ];
