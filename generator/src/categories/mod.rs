@@ -2,6 +2,7 @@
 
 mod catalog;
 
+mod assembly;
 mod book;
 mod box_with_lid;
 mod cabinet;
@@ -57,6 +58,7 @@ pub const CATEGORIES: &[Category] = &[
     usb_stick::CATEGORY,
     washing_machine::CATEGORY,
     // Training categories: random articulated assemblies, then everyday objects.
+    assembly::CATEGORY,
     book::CATEGORY,
     dishwasher::CATEGORY,
     folding_table::CATEGORY,

@@ -1,6 +1,7 @@
 //! Articulated objects and the building blocks categories are made of, one family per file.
 
 pub mod articulated;
+pub mod assembly;
 pub mod bracket;
 pub mod car_body;
 pub mod carcass;
