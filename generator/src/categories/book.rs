@@ -7,9 +7,9 @@ use rand::Rng as _;
 
 use super::catalog::{Category, TRAIN};
 use crate::mesh::Mesh;
-use crate::objects::hinge::{contact_pads, hinge, pad_thickness};
+use crate::objects::contact::{contact_pads, pad_thickness};
 use crate::objects::profile::prism;
-use crate::objects::{ArticulatedObject, Link};
+use crate::objects::{ArticulatedObject, Joint, Link};
 use crate::seed::Rng;
 
 /// The book category.
@@ -87,14 +87,14 @@ fn build(rng: &mut Rng) -> ArticulatedObject {
     object.attach(
         0,
         Link { name: "front cover".into(), mesh: front },
-        hinge(front_pivot, Vector3::z(), max_front),
+        Joint::hinge(front_pivot, Vector3::z(), max_front),
     );
     if let Some(mesh) = back_link {
         // Turning about -z swings the back cover's fore edge down and under.
         object.attach(
             0,
             Link { name: "back cover".into(), mesh },
-            hinge(back_pivot, -Vector3::z(), max_back),
+            Joint::hinge(back_pivot, -Vector3::z(), max_back),
         );
     }
     object

@@ -9,7 +9,7 @@ use rand::Rng as _;
 use super::catalog::{Category, TEST};
 use crate::mesh::Mesh;
 use crate::objects::car_body::{running_gear, CarShape, LID};
-use crate::objects::joints::{mirrored_x, revolute};
+use crate::objects::joints::mirrored_x;
 use crate::objects::{ArticulatedObject, Joint, Link};
 use crate::seed::Rng;
 
@@ -100,10 +100,10 @@ fn build(rng: &mut Rng) -> ArticulatedObject {
     // Lids hinge at the top of their cabin-side edge, so that they rise away from the cabin.
     let belt_line = |z: Real| Point3::new(0.0, belt, z);
     if opens == 1 {
-        let hinge = revolute(belt_line(d1), -Vector3::x(), max_bonnet.to_radians());
+        let hinge = Joint::hinge(belt_line(d1), -Vector3::x(), max_bonnet.to_radians());
         object.attach(0, Link { name: "bonnet".into(), mesh: car.lid(d1, hl, nose) }, hinge);
     } else if opens == 2 {
-        let hinge = revolute(belt_line(c0), Vector3::x(), max_boot.to_radians());
+        let hinge = Joint::hinge(belt_line(c0), Vector3::x(), max_boot.to_radians());
         object.attach(0, Link { name: "boot lid".into(), mesh: car.lid(c0, -hl, tail) }, hinge);
     }
     object

@@ -8,12 +8,12 @@ use rand::Rng as _;
 
 use super::catalog::{Category, TRAIN};
 use crate::mesh::Mesh;
+use crate::objects::carcass::{cavity, feet, open_box};
 use crate::objects::controls::button;
 use crate::objects::handle::bar_handle;
-use crate::objects::joints::{drop_hinge, prismatic};
+use crate::objects::joints::drop_hinge;
 use crate::objects::rack::rack;
-use crate::objects::carcass::{cavity, feet, open_box};
-use crate::objects::{ArticulatedObject, Link};
+use crate::objects::{ArticulatedObject, Joint, Link};
 use crate::seed::Rng;
 
 /// The dishwasher category.
@@ -103,7 +103,11 @@ fn build(rng: &mut Rng) -> ArticulatedObject {
         }));
         object.links[0].mesh.append(ledges);
         let name = if i == 0 { "lower basket" } else { "upper basket" };
-        object.attach(0, Link { name: name.into(), mesh: basket }, prismatic(Vector3::z(), travel));
+        object.attach(
+            0,
+            Link { name: name.into(), mesh: basket },
+            Joint::slide(Point3::origin(), Vector3::z(), travel),
+        );
     }
     object
 }

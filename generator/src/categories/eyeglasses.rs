@@ -7,7 +7,7 @@ use rand::Rng as _;
 
 use super::catalog::{Category, TEST};
 use crate::mesh::Mesh;
-use crate::objects::hinge::{contact_pads, hinge};
+use crate::objects::contact::contact_pads;
 use crate::objects::profile::{block, prism, superellipse};
 use crate::objects::{ArticulatedObject, Joint, Link};
 use crate::seed::Rng;
@@ -66,7 +66,7 @@ impl Temple {
         );
         let barrel = Mesh::cylinder(Point3::new(x, y0, z), Point3::new(x, y1, z), self.knuckle, 10);
         // Turning about -side * y swings the free end backwards (-z), past straight back.
-        let joint = hinge(Point3::new(x, mid, z), -self.side * Vector3::y(), max_open);
+        let joint = Joint::hinge(Point3::new(x, mid, z), -self.side * Vector3::y(), max_open);
         (Mesh::union([Mesh::hull(&bar), tip, barrel]), joint)
     }
 

@@ -7,9 +7,9 @@ use rand::Rng as _;
 
 use super::catalog::{Category, TEST};
 use crate::mesh::Mesh;
-use crate::objects::hinge::{contact_pads, hinge};
+use crate::objects::contact::contact_pads;
 use crate::objects::profile::{prism, rounded_rect};
-use crate::objects::{ArticulatedObject, Link};
+use crate::objects::{ArticulatedObject, Joint, Link};
 use crate::seed::Rng;
 
 /// The flip phone category.
@@ -131,7 +131,7 @@ fn build(rng: &mut Rng) -> ArticulatedObject {
     let mut object =
         ArticulatedObject::new("flip_phone", Link { name: "bottom half".into(), mesh: bottom });
     // Turning about -x lifts the far end of the top half up and over the hinge.
-    let joint = hinge(pivot, -Vector3::x(), max_open);
+    let joint = Joint::hinge(pivot, -Vector3::x(), max_open);
     object.attach(0, Link { name: "top half".into(), mesh: Mesh::union(top) }, joint);
     object
 }

@@ -8,9 +8,9 @@ use rand::Rng as _;
 
 use super::catalog::{Category, TEST};
 use crate::mesh::Mesh;
-use crate::objects::hinge::{contact_pads, hinge};
+use crate::objects::contact::contact_pads;
 use crate::objects::profile::prism;
-use crate::objects::{ArticulatedObject, Link};
+use crate::objects::{ArticulatedObject, Joint, Link};
 use crate::seed::Rng;
 
 /// The folding knife category.
@@ -161,7 +161,8 @@ fn build(rng: &mut Rng) -> ArticulatedObject {
         let pivot = Point3::new(b.pivot_x, ys.0, 0.0);
         let (pad_l, pad_p) = contact_pads(pivot, Vector3::y(), 0.7 * tang);
         handle.push(pad_l);
-        let joint = hinge(pivot, -Vector3::y(), rng.random_range(165.0f32..180.0).to_radians());
+        let joint =
+            Joint::hinge(pivot, -Vector3::y(), rng.random_range(165.0f32..180.0).to_radians());
         pen_link = Some((Mesh::union([b.mesh(tang, None), pad_p]), joint));
     }
     let mut object = ArticulatedObject::new(
@@ -169,7 +170,7 @@ fn build(rng: &mut Rng) -> ArticulatedObject {
         Link { name: "handle".into(), mesh: Mesh::union(handle) },
     );
     // Turning about +y swings the tip out through the open (+z) side of the slot.
-    let pivot = hinge(Point3::origin(), Vector3::y(), max_open);
+    let pivot = Joint::hinge(Point3::origin(), Vector3::y(), max_open);
     object.attach(0, Link { name: "blade".into(), mesh: blade }, pivot);
     if let Some((mesh, joint)) = pen_link {
         object.attach(0, Link { name: "pen blade".into(), mesh }, joint);

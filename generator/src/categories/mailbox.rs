@@ -7,8 +7,7 @@ use rand::Rng as _;
 
 use super::catalog::{Category, TRAIN};
 use crate::mesh::Mesh;
-use crate::objects::motion::hinge;
-use crate::objects::{ArticulatedObject, Link};
+use crate::objects::{ArticulatedObject, Joint, Link};
 use crate::seed::Rng;
 
 /// The mailbox category.
@@ -92,9 +91,9 @@ fn build(rng: &mut Rng) -> ArticulatedObject {
     ));
     let mut object = ArticulatedObject::new("mailbox", Link { name: "box".into(), mesh: body });
     // Turning about +x swings the door's top forward and down.
-    let drop = hinge(Point3::new(0.0, 0.0, hl), Vector3::x(), max_door);
+    let drop = Joint::hinge(Point3::new(0.0, 0.0, hl), Vector3::x(), max_door);
     object.attach(0, Link { name: "door".into(), mesh: door }, drop);
-    let raise = hinge(Point3::new(x0, pin_y, pin_z), -Vector3::x(), max_flag);
+    let raise = Joint::hinge(Point3::new(x0, pin_y, pin_z), -Vector3::x(), max_flag);
     object.attach(0, Link { name: "flag".into(), mesh: flag }, raise);
     object
 }

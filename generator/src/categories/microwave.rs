@@ -7,12 +7,12 @@ use rand::Rng as _;
 
 use super::catalog::{Category, TEST};
 use crate::mesh::Mesh;
+use crate::objects::carcass::{cavity, feet, open_box};
 use crate::objects::controls::{button, knob};
 use crate::objects::door::HingeSide;
 use crate::objects::handle::bar_handle;
 use crate::objects::joints::{mirrored_part, vertical_hinge};
 use crate::objects::panel::framed_panel;
-use crate::objects::carcass::{cavity, feet, open_box};
 use crate::objects::{ArticulatedObject, Link};
 use crate::seed::Rng;
 

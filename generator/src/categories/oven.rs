@@ -8,14 +8,14 @@ use rand::Rng as _;
 
 use super::catalog::{Category, TEST};
 use crate::mesh::Mesh;
+use crate::objects::carcass::open_box;
 use crate::objects::controls::knob_row;
 use crate::objects::drawer::drawer;
 use crate::objects::handle::bar_handle;
-use crate::objects::joints::{drop_hinge, prismatic};
+use crate::objects::joints::drop_hinge;
 use crate::objects::panel::framed_panel;
 use crate::objects::rack::rack;
-use crate::objects::carcass::open_box;
-use crate::objects::{ArticulatedObject, Link};
+use crate::objects::{ArticulatedObject, Joint, Link};
 use crate::seed::Rng;
 
 /// The oven category.
@@ -121,7 +121,7 @@ fn build(rng: &mut Rng) -> ArticulatedObject {
         let depth = 0.5 * (d - wall);
         let (tray, ledges) = rack_and_ledges((x0, x1), ya + 0.05, -hd + wall, depth);
         body.append(ledges);
-        let slide = prismatic(Vector3::z(), d - wall - depth - 0.02);
+        let slide = Joint::slide(Point3::origin(), Vector3::z(), d - wall - depth - 0.02);
         parts.push(("rack", tray, slide));
     } else if extra == 2 {
         let depth = d - 2.0 * wall;

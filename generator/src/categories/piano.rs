@@ -9,7 +9,6 @@ use super::catalog::{Category, TRAIN};
 use crate::mesh::Mesh;
 use crate::objects::container::back_hinge;
 use crate::objects::keyboard::{Keyboard, KEYBED_DROP};
-use crate::objects::motion::hinge;
 use crate::objects::{ArticulatedObject, Joint, Link};
 use crate::seed::Rng;
 
@@ -154,5 +153,5 @@ fn grand_case(rng: &mut Rng, half_w: Real) -> (Mesh, Mesh, Joint) {
     case.append(pedals(-0.28));
     let lid = prism(top, top + lid_t);
     // Turning about +z lifts the curved side up off the rim.
-    (case, lid, hinge(Point3::new(-half_w, top, 0.0), Vector3::z(), max_lid))
+    (case, lid, Joint::hinge(Point3::new(-half_w, top, 0.0), Vector3::z(), max_lid))
 }

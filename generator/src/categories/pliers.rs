@@ -7,9 +7,9 @@ use rand::Rng as _;
 
 use super::catalog::{Category, TEST};
 use crate::mesh::Mesh;
-use crate::objects::hinge::{contact_pads, hinge};
+use crate::objects::contact::contact_pads;
 use crate::objects::profile::prism;
-use crate::objects::{ArticulatedObject, Link};
+use crate::objects::{ArticulatedObject, Joint, Link};
 use crate::seed::Rng;
 
 /// The pliers category.
@@ -126,7 +126,7 @@ fn build(rng: &mut Rng) -> ArticulatedObject {
     object.attach(
         0,
         Link { name: "moving half".into(), mesh: moving },
-        hinge(Point3::origin(), Vector3::z(), max_open),
+        Joint::hinge(Point3::origin(), Vector3::z(), max_open),
     );
     object
 }

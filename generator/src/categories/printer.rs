@@ -9,7 +9,7 @@ use rand::Rng as _;
 use super::catalog::{Category, VALIDATION};
 use crate::mesh::Mesh;
 use crate::objects::bracket::bracket_hinge;
-use crate::objects::hinge::{pad_thickness, slide};
+use crate::objects::contact::pad_thickness;
 use crate::objects::profile::block;
 use crate::objects::{ArticulatedObject, Joint, Link};
 use crate::seed::Rng;
@@ -51,7 +51,7 @@ fn tray(
     ]);
     let floor =
         block(Point3::new(-0.5 * hx, y0 - p, front - depth), Point3::new(0.5 * hx, y0, front));
-    (tray, floor, slide(Point3::new(0.0, y0, front), Vector3::z(), travel))
+    (tray, floor, Joint::slide(Point3::new(0.0, y0, front), Vector3::z(), travel))
 }
 
 fn build(rng: &mut Rng) -> ArticulatedObject {

@@ -7,10 +7,10 @@ use rand::Rng as _;
 
 use super::catalog::{Category, TEST};
 use crate::mesh::Mesh;
+use crate::objects::carcass::{feet, open_box};
 use crate::objects::door::HingeSide;
 use crate::objects::handle::bar_handle;
 use crate::objects::joints::vertical_hinge;
-use crate::objects::carcass::{feet, open_box};
 use crate::objects::{ArticulatedObject, Link};
 use crate::seed::Rng;
 

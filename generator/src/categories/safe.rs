@@ -7,10 +7,10 @@ use rand::Rng as _;
 
 use super::catalog::{Category, VALIDATION};
 use crate::mesh::Mesh;
+use crate::objects::carcass::{cavity, open_box};
 use crate::objects::controls::knob;
 use crate::objects::door::HingeSide;
 use crate::objects::joints::{knuckles, mirrored_part, vertical_hinge};
-use crate::objects::carcass::{cavity, open_box};
 use crate::objects::{ArticulatedObject, Link};
 use crate::seed::Rng;
 

@@ -7,9 +7,8 @@ use rand::Rng as _;
 
 use super::catalog::{Category, TEST};
 use crate::mesh::Mesh;
-use crate::objects::joints::prismatic;
 use crate::objects::panel::framed_panel;
-use crate::objects::{ArticulatedObject, Link};
+use crate::objects::{ArticulatedObject, Joint, Link};
 use crate::seed::Rng;
 
 /// The sliding window category.
@@ -127,14 +126,14 @@ fn build(rng: &mut Rng) -> ArticulatedObject {
     let axis_b = -axis_a;
     let sashes = if both_move {
         vec![
-            ("sash a", a, prismatic(axis_a, travel_a)),
-            ("sash b", bs, prismatic(axis_b, travel_b)),
+            ("sash a", a, Joint::slide(Point3::origin(), axis_a, travel_a)),
+            ("sash b", bs, Joint::slide(Point3::origin(), axis_b, travel_b)),
         ]
     } else {
         let (fixed, moving, joint) = if move_b {
-            (a, bs, prismatic(axis_b, travel_b))
+            (a, bs, Joint::slide(Point3::origin(), axis_b, travel_b))
         } else {
-            (bs, a, prismatic(axis_a, travel_a))
+            (bs, a, Joint::slide(Point3::origin(), axis_a, travel_a))
         };
         frame.append(fixed);
         vec![("sash", moving, joint)]

@@ -7,9 +7,9 @@ use rand::Rng as _;
 
 use super::catalog::{Category, TEST};
 use crate::mesh::Mesh;
-use crate::objects::hinge::{contact_pads, hinge, pad_thickness, slide};
+use crate::objects::contact::{contact_pads, pad_thickness};
 use crate::objects::profile::prism;
-use crate::objects::{ArticulatedObject, Link};
+use crate::objects::{ArticulatedObject, Joint, Link};
 use crate::seed::Rng;
 
 /// The stapler category.
@@ -111,7 +111,7 @@ fn build(rng: &mut Rng) -> ArticulatedObject {
         object.attach(
             0,
             Link { name: "arm".into(), mesh: Mesh::union(arm) },
-            hinge(pivot, -Vector3::x(), max_open),
+            Joint::hinge(pivot, -Vector3::x(), max_open),
         );
         return object;
     }
@@ -129,9 +129,9 @@ fn build(rng: &mut Rng) -> ArticulatedObject {
     let arm_link = object.attach(
         0,
         Link { name: "arm".into(), mesh: Mesh::union(arm) },
-        hinge(pivot, -Vector3::x(), max_open),
+        Joint::hinge(pivot, -Vector3::x(), max_open),
     );
-    let joint = slide(Point3::new(0.0, y0, zf), Vector3::z(), travel);
+    let joint = Joint::slide(Point3::new(0.0, y0, zf), Vector3::z(), travel);
     object.attach(arm_link, Link { name: "magazine".into(), mesh: Mesh::union(magazine) }, joint);
     object
 }

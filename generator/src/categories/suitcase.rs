@@ -9,8 +9,7 @@ use super::catalog::{Category, TEST};
 use crate::mesh::Mesh;
 use crate::objects::container::{box_walls, open_box};
 use crate::objects::handle::bar_handle;
-use crate::objects::motion::{hinge, slide};
-use crate::objects::{ArticulatedObject, Link};
+use crate::objects::{ArticulatedObject, Joint, Link};
 use crate::seed::Rng;
 
 /// The suitcase category.
@@ -90,12 +89,12 @@ fn build(rng: &mut Rng) -> ArticulatedObject {
         } else {
             "handle tubes"
         };
-        let joint = slide(Vector3::y(), travel * (top_end - y0));
+        let joint = Joint::slide(Point3::origin(), Vector3::y(), travel * (top_end - y0));
         parent = object.attach(parent, Link { name: name.into(), mesh }, joint);
     }
     if with_lid {
         let axis = -Vector3::y() * side.signum();
-        let joint = hinge(Point3::new(-side, bottom, split), axis, max_lid);
+        let joint = Joint::hinge(Point3::new(-side, bottom, split), axis, max_lid);
         object.attach(0, Link { name: "lid".into(), mesh: front }, joint);
     }
     object

@@ -10,8 +10,7 @@ use crate::mesh::Mesh;
 use crate::objects::container::{front_latch, knuckle_hinges, open_box};
 use crate::objects::drawer::drawer;
 use crate::objects::handle::bar_handle;
-use crate::objects::motion::slide;
-use crate::objects::{ArticulatedObject, Link};
+use crate::objects::{ArticulatedObject, Joint, Link};
 use crate::seed::Rng;
 
 /// The toolbox category.
@@ -92,7 +91,7 @@ fn build(rng: &mut Rng) -> ArticulatedObject {
                 Point3::new(mid + 0.5 * wall, h - 0.3 * tray_h, front - wall),
             ),
         ]);
-        let joint = slide(-Vector3::z(), 2.0 * front - tray_d);
+        let joint = Joint::slide(Point3::origin(), -Vector3::z(), 2.0 * front - tray_d);
         object.attach(0, Link { name: format!("tray {}", i + 1), mesh: tray }, joint);
     }
     if trays == 0 {

@@ -7,7 +7,6 @@ use rand::Rng as _;
 use super::catalog::{Category, TEST};
 use crate::mesh::Mesh;
 use crate::objects::container::{back_hinge, box_walls, corner_feet};
-use crate::objects::motion::hinge;
 use crate::objects::shell::{oval_frustum, oval_wall};
 use crate::objects::{ArticulatedObject, Joint, Link};
 use crate::seed::Rng;
@@ -118,5 +117,5 @@ fn pedal(width: Real, length: Real, feet: Real, rb: Real, max_press: Real) -> (M
     });
     let mesh = Mesh::union([lever, step].into_iter().chain(ribs));
     // Turning about +x lowers everything in front of the pivot.
-    (mesh, hinge(Point3::new(0.0, feet, back), Vector3::x(), max_press))
+    (mesh, Joint::hinge(Point3::new(0.0, feet, back), Vector3::x(), max_press))
 }

@@ -7,8 +7,7 @@ use rand::Rng as _;
 
 use super::catalog::{Category, TEST};
 use crate::mesh::Mesh;
-use crate::objects::motion::hinge;
-use crate::objects::{ArticulatedObject, Link};
+use crate::objects::{ArticulatedObject, Joint, Link};
 use crate::seed::Rng;
 
 /// The usb_stick category.
@@ -57,7 +56,7 @@ fn build(rng: &mut Rng) -> ArticulatedObject {
     }
     let bracket = swivel_bracket(pin, length + plug + gap, ht, bracket_t, bracket_hw);
     let mut object = ArticulatedObject::new("usb_stick", Link { name: "body".into(), mesh: body });
-    let joint = hinge(Point3::new(pin, 0.0, 0.0), Vector3::y(), max_swivel);
+    let joint = Joint::hinge(Point3::new(pin, 0.0, 0.0), Vector3::y(), max_swivel);
     object.attach(0, Link { name: "swivel bracket".into(), mesh: bracket }, joint);
     object
 }

@@ -6,9 +6,9 @@ use rand::Rng as _;
 
 use super::catalog::{Category, TRAIN};
 use crate::mesh::Mesh;
+use crate::objects::carcass::open_box;
 use crate::objects::door::{front_door, HingeSide};
 use crate::objects::drawer::drawer;
-use crate::objects::carcass::open_box;
 use crate::objects::{ArticulatedObject, Link};
 use crate::seed::Rng;
 

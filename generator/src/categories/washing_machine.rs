@@ -7,12 +7,12 @@ use rand::Rng as _;
 
 use super::catalog::{Category, TEST};
 use crate::mesh::Mesh;
+use crate::objects::carcass::{feet, open_box};
 use crate::objects::controls::{button, knob};
 use crate::objects::door::HingeSide;
 use crate::objects::drawer::drawer;
 use crate::objects::joints::{knuckles, mirrored_part, vertical_hinge};
 use crate::objects::round::annulus;
-use crate::objects::carcass::{feet, open_box};
 use crate::objects::{ArticulatedObject, Joint, Link};
 use crate::seed::Rng;
 

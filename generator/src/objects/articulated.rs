@@ -81,6 +81,39 @@ pub enum ObjectError {
     },
 }
 
+impl Joint {
+    /// A revolute joint about `axis` (normalised here) through `pivot`, with `limits` in
+    /// radians and rest value 0; the right-hand rule about `axis` gives the turning sense.
+    /// `parent` and `child` are set by [`ArticulatedObject::attach`].
+    pub fn revolute(pivot: Point3, axis: Vector3, limits: (Real, Real)) -> Self {
+        Self {
+            kind: JointKind::Revolute,
+            parent: 0,
+            child: 0,
+            pivot,
+            axis: axis.normalize(),
+            limits,
+            rest: 0.0,
+        }
+    }
+
+    /// A prismatic joint along `axis` (normalised here), `limits` in object units, rest
+    /// value 0; `at` marks where the slide is (the pivot), for readers of the joint.
+    pub fn prismatic(at: Point3, axis: Vector3, limits: (Real, Real)) -> Self {
+        Self { kind: JointKind::Prismatic, ..Self::revolute(at, axis, limits) }
+    }
+
+    /// A hinge that is closed at 0 (the rest value) and opens to `max_angle` radians.
+    pub fn hinge(pivot: Point3, axis: Vector3, max_angle: Real) -> Self {
+        Self::revolute(pivot, axis, (0.0, max_angle))
+    }
+
+    /// A slide that is closed at 0 (the rest value) and pulls out by up to `max_travel`.
+    pub fn slide(at: Point3, axis: Vector3, max_travel: Real) -> Self {
+        Self::prismatic(at, axis, (0.0, max_travel))
+    }
+}
+
 impl ArticulatedObject {
     /// An object with only its root link.
     pub fn new(category: &str, root: Link) -> Self {

@@ -4,7 +4,7 @@
 use pairs::math::{Point3, Real, Vector3};
 
 use super::articulated::Joint;
-use super::hinge::{contact_pads, hinge};
+use super::contact::contact_pads;
 use crate::mesh::Mesh;
 
 /// Cheek plate thickness along the hinge axis, metres.
@@ -44,5 +44,5 @@ pub fn bracket_hinge(
         Mesh::cylinder(pivot - axis * half_span, pivot + axis * half_span, r, 12),
         pad_knuckle,
     ]);
-    (Mesh::union(bracket), knuckle, hinge(pivot, axis, max_angle))
+    (Mesh::union(bracket), knuckle, Joint::hinge(pivot, axis, max_angle))
 }

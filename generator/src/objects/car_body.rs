@@ -5,7 +5,6 @@
 use pairs::math::{Point3, Real, Vector3};
 
 use super::articulated::Joint;
-use super::joints::revolute;
 use crate::mesh::Mesh;
 
 /// Thickness of the bonnet and boot lid.
@@ -151,7 +150,7 @@ impl CarShape {
             ));
         }
         // The rear edge swings out (+x) about the front edge's outer corner.
-        let joint = revolute(Point3::new(hw, belt, z1), -Vector3::y(), max_angle);
+        let joint = Joint::hinge(Point3::new(hw, belt, z1), -Vector3::y(), max_angle);
         (door, joint)
     }
 }

@@ -8,7 +8,6 @@
 use pairs::math::{Point3, Real, Vector3};
 
 use super::articulated::Joint;
-use super::motion::hinge;
 use crate::mesh::Mesh;
 
 /// Four walls `wall` thick standing on the outer footprint `x` by `z`, from `y.0` to `y.1`;
@@ -44,7 +43,7 @@ pub fn corner_feet(x: Real, z: Real, height: Real, radius: Real) -> Mesh {
 /// The hinge of a lid whose back-bottom edge runs along x through `pivot`: turning about
 /// -x lifts the lid's front edge up and back, up to `max_angle` radians.
 pub fn back_hinge(pivot: Point3, max_angle: Real) -> Joint {
-    hinge(pivot, -Vector3::x(), max_angle)
+    Joint::hinge(pivot, -Vector3::x(), max_angle)
 }
 
 /// Hinges with knuckles for a lid closing a box at height `top` whose back face is

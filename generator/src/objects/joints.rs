@@ -9,28 +9,6 @@ use super::articulated::Joint;
 use super::door::HingeSide;
 use crate::mesh::Mesh;
 
-/// A revolute joint about `axis` through `pivot`, from closed (0) to `max_angle` radians.
-pub fn revolute(pivot: Point3, axis: Vector3, max_angle: Real) -> Joint {
-    Joint {
-        kind: JointKind::Revolute,
-        parent: 0,
-        child: 0,
-        pivot,
-        axis,
-        limits: (0.0, max_angle),
-        rest: 0.0,
-    }
-}
-
-/// A prismatic joint along `axis` (unit), from closed (0) to `max_travel`.
-pub fn prismatic(axis: Vector3, max_travel: Real) -> Joint {
-    Joint {
-        kind: JointKind::Prismatic,
-        limits: (0.0, max_travel),
-        ..revolute(Point3::origin(), axis, 1.0)
-    }
-}
-
 /// A vertical hinge through `pivot` for a door in front of the plane `z = pivot.z` that
 /// extends from the hinge towards +x (`Left`) or -x (`Right`); positive angles swing its
 /// free edge out towards +z. With the pivot on the door's back face (or further out), no
@@ -41,7 +19,7 @@ pub fn vertical_hinge(pivot: Point3, side: HingeSide, max_angle: Real) -> Joint 
         HingeSide::Left => -Vector3::y(),
         HingeSide::Right => Vector3::y(),
     };
-    revolute(pivot, axis, max_angle)
+    Joint::hinge(pivot, axis, max_angle)
 }
 
 /// The hinge of a door over `x0..x1` standing on `y` in front of the frame's face
@@ -61,7 +39,7 @@ pub fn drop_hinge(
         Mesh::cuboid(Point3::new(x, y - 0.015, front), Point3::new(x + 0.03, y, front + thickness))
     };
     let joint =
-        revolute(Point3::new(0.5 * (x0 + x1), y, front + thickness), Vector3::x(), max_angle);
+        Joint::hinge(Point3::new(0.5 * (x0 + x1), y, front + thickness), Vector3::x(), max_angle);
     (Mesh::union([bracket(x0), bracket(x1 - 0.03)]), joint)
 }
 

@@ -5,7 +5,6 @@
 use pairs::math::{Point3, Real, Vector3};
 
 use super::articulated::Joint;
-use super::motion::hinge;
 use crate::mesh::Mesh;
 
 /// Where a keyboard sits: the keys span x from `-half` to `half`, their tops are at height
@@ -77,6 +76,6 @@ impl Keyboard {
                 Point3::new(half, y0, z0 + thickness),
             ),
         ]);
-        (mesh, hinge(Point3::new(0.0, y0, thickness), -Vector3::x(), max_angle))
+        (mesh, Joint::hinge(Point3::new(0.0, y0, thickness), -Vector3::x(), max_angle))
     }
 }

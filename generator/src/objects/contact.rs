@@ -1,39 +1,9 @@
-//! Joint constructors for the usual hinges and slides: closed at rest (value 0), opening up
-//! to a limit. `ArticulatedObject::attach` fills in the parent and child.
+//! Contact pads: thin discs where a hinge's two links meet, so that they visibly touch at
+//! every angle of the joint.
 
 use pairs::math::{Point3, Real, Vector3};
-use pairs::JointKind;
 
-use super::articulated::Joint;
 use crate::mesh::Mesh;
-
-/// A revolute joint about the line through `pivot` along `axis` (normalised here), closed at
-/// 0 and opening by up to `max_angle` radians (right-hand rule about `axis`).
-pub fn hinge(pivot: Point3, axis: Vector3, max_angle: Real) -> Joint {
-    Joint {
-        kind: JointKind::Revolute,
-        parent: 0,
-        child: 0,
-        pivot,
-        axis: axis.normalize(),
-        limits: (0.0, max_angle),
-        rest: 0.0,
-    }
-}
-
-/// A prismatic joint along `axis` (normalised here), closed at 0 and sliding out by up to
-/// `max_travel`; `at` marks where the slide is, for readers of the joint.
-pub fn slide(at: Point3, axis: Vector3, max_travel: Real) -> Joint {
-    Joint {
-        kind: JointKind::Prismatic,
-        parent: 0,
-        child: 0,
-        pivot: at,
-        axis: axis.normalize(),
-        limits: (0.0, max_travel),
-        rest: 0.0,
-    }
-}
 
 /// Coaxial contact pads for a hinge: two thin discs of `radius` meeting on the plane through
 /// `pivot` normal to `axis`, the parent's on the -`axis` side and the child's on the +`axis`
