@@ -3,8 +3,17 @@
 mod catalog;
 
 mod cabinet;
+mod desk_lamp;
+mod excavator;
+mod fan;
+mod faucet;
+mod folding_chair;
 mod laptop;
+mod robot_arm;
 mod scissors;
+mod seesaw;
+mod swivel_chair;
+mod windmill;
 
 pub use catalog::{find, of_split, split_table, Category, Split};
 
@@ -14,6 +23,15 @@ pub const CATEGORIES: &[Category] = &[
     laptop::CATEGORY,
     cabinet::CATEGORY,
     scissors::CATEGORY,
+    swivel_chair::CATEGORY,
+    folding_chair::CATEGORY,
+    desk_lamp::CATEGORY,
+    faucet::CATEGORY,
+    seesaw::CATEGORY,
+    windmill::CATEGORY,
+    fan::CATEGORY,
     // Training categories.
+    robot_arm::CATEGORY,
+    excavator::CATEGORY,
     // Validation categories.
 ];
