@@ -1,8 +1,10 @@
 //! Articulated objects and the building blocks categories are made of, one family per file.
 
+pub mod arm;
 pub mod articulated;
 pub mod assembly;
 pub mod bracket;
+pub mod bucket;
 pub mod car_body;
 pub mod carcass;
 pub mod contact;
@@ -16,7 +18,9 @@ pub mod keyboard;
 pub mod panel;
 pub mod profile;
 pub mod rack;
+pub mod rotor;
 pub mod round;
 pub mod shell;
+pub mod tube;
 
 pub use articulated::{ArticulatedObject, Joint, Link, ObjectError};
