@@ -4,6 +4,7 @@
 use std::path::{Path, PathBuf};
 
 use image::{Rgb, RgbImage};
+use pairs::dataset::viz::part_colour;
 use pairs::math::{Point3, Real, Rotation3};
 
 use crate::categories::{Category, CATEGORIES};
@@ -20,17 +21,6 @@ const POINTS: usize = 9000;
 const SPLAT: i32 = 2;
 /// Thumbnails per row of the overview picture.
 const COLUMNS: u32 = 4;
-/// Link colours: the root is grey, moving links take the next colours in turn.
-const PALETTE: [[u8; 3]; 8] = [
-    [150, 150, 150],
-    [31, 119, 180],
-    [255, 127, 14],
-    [44, 160, 44],
-    [214, 39, 40],
-    [148, 103, 189],
-    [23, 190, 207],
-    [188, 189, 34],
-];
 
 /// Why the gallery could not be written.
 #[derive(Debug, thiserror::Error)]
@@ -113,7 +103,8 @@ fn draw_panel(image: &mut RgbImage, x0: u32, points: &[(Point3, usize)], bounds:
         let px = (half + (p.x - centre.x) * scale) as i32 + x0 as i32;
         let py = (half - (p.y - centre.y) * scale) as i32;
         let shade = 0.55 + 0.45 * (p.z - lo.z) / depth;
-        let colour = Rgb(PALETTE[link % PALETTE.len()].map(|c| (c as Real * shade) as u8));
+        // The palette of the datasets' Foxglove channels, so a link looks the same in both.
+        let colour = Rgb(part_colour((link % 256) as u8).map(|c| (c as Real * shade) as u8));
         for dy in -SPLAT..=SPLAT {
             for dx in -SPLAT..=SPLAT {
                 let (x, y) = (px + dx, py + dy);
@@ -200,8 +191,8 @@ mod tests {
         };
         let (closed, open) = (painted(0), painted(PANEL));
         assert!(closed > 2000 && open > closed, "{closed} {open}");
-        // The lid (link 1) shows in blue.
-        assert!(picture.pixels().any(|p| u16::from(p.0[2]) > u16::from(p.0[0]) + 60));
+        // The lid (link 1) shows in its part colour, red.
+        assert!(picture.pixels().any(|p| u16::from(p.0[0]) > u16::from(p.0[2]) + 60));
         assert_eq!(picture, render_category(laptop, 0));
     }
 }
