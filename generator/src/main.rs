@@ -19,14 +19,8 @@ use pairs::PairKind;
 /// With no arguments it writes the paper-size SF2F set (175 objects, 875 pairs, N = 512,
 /// seed 0, held-out test categories) to datasets/sf2f. Flags override the values of
 /// --config, which override the built-in defaults (datasets/sf2f.toml lists them).
-///
-/// Examples:
-///   generator --split train -n 20000 --out datasets/train   a training set on disk
-///   generator --shard 3/8 --out shards/3                    shard 3 of 8 (cluster array job)
-///   generator merge shards/* --out datasets/sf2f            shards into one dataset
-///   generator --gallery                                     reports/gallery/*.png
 #[derive(Debug, Parser)]
-#[command(version, about, long_about, args_conflicts_with_subcommands = true)]
+#[command(version, about, long_about, args_conflicts_with_subcommands = true, after_help = EXAMPLES)]
 struct Args {
     #[command(subcommand)]
     command: Option<Command>,
@@ -48,6 +42,9 @@ struct Args {
     /// Points per cloud.
     #[arg(short, long)]
     points: Option<u32>,
+    /// Fewest points every part must get in both clouds; pairs below it are redrawn.
+    #[arg(long)]
+    min_part_points: Option<u32>,
     /// Dataset seed: the same config and seed give byte-identical files.
     #[arg(short, long)]
     seed: Option<u64>,
@@ -82,6 +79,13 @@ struct Args {
     #[arg(long)]
     print_config: bool,
 }
+
+/// Shown after the options in `--help`.
+const EXAMPLES: &str = "Examples:
+  generator --split train -n 20000 --out datasets/train   a training set on disk
+  generator --shard 3/8 --out shards/3                    shard 3 of 8 (cluster array job)
+  generator merge shards/* --out datasets/sf2f            the shards as one dataset
+  generator --gallery                                     reports/gallery/*.png";
 
 /// Subcommands besides generating.
 #[derive(Debug, Subcommand)]
@@ -129,7 +133,17 @@ impl Args {
         macro_rules! set {
             ($($field:ident),*) => { $(if let Some(v) = &self.$field { config.$field = v.clone(); })* };
         }
-        set!(kind, objects, pairs_per_object, states_per_object, points, seed, split, categories);
+        set!(
+            kind,
+            objects,
+            pairs_per_object,
+            states_per_object,
+            points,
+            min_part_points,
+            seed,
+            split,
+            categories
+        );
         Ok(config)
     }
 }
