@@ -81,7 +81,14 @@ fn make_batch(config: &GeneratorConfig, objects: std::ops::Range<u32>) -> Batch 
         .into_par_iter()
         .map(|i| match object_pairs(config, i) {
             Ok(pairs) => Ok(Some(pairs.into_iter().map(|g| g.pair).collect())),
-            Err(GenerateError::TooFewPairs { .. }) => Ok(None),
+            Err(GenerateError::TooFewPairs { object, category, .. }) => {
+                tracing::debug!(
+                    object,
+                    category,
+                    "training stream skips an object with a part too small to sample"
+                );
+                Ok(None)
+            }
             Err(e) => Err(e),
         })
         .collect::<Result<_, _>>()?;
