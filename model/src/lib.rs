@@ -1,0 +1,25 @@
+//! The network of Yi et al. 2018, "Deep Part Induction from Articulated Object Pairs", in
+//! burn (the flex CPU backend by default; GPU backends are opt-in features).
+//!
+//! This first layer holds the PointNet++ building blocks every module of the paper is made
+//! of: [`sampling`] computes farthest-point samples, ball neighbourhoods and 3-NN weights as
+//! plain indices (no gradient), and [`pointnet`] turns them into differentiable layers
+//! ([`pointnet::SharedMlp`], [`pointnet::SetAbstraction`], [`pointnet::FeaturePropagation`])
+//! that group features by gather, so gradients flow to every point that was picked.
+//!
+//! ```
+//! use burn::prelude::*;
+//! use model::pointnet::{SetAbstractionConfig, FeaturePropagationConfig};
+//!
+//! let device = Device::flex();
+//! let xyz = Tensor::<3>::random([1, 64, 3], burn::tensor::Distribution::Default, &device);
+//! let sa = SetAbstractionConfig::new(16, 0.4, 8, vec![32, 32]).init(0, &device);
+//! let (centres, features) = sa.forward(xyz.clone(), None).expect("64 points");
+//! assert_eq!(features.dims(), [1, 16, 32]);
+//! let fp = FeaturePropagationConfig::new(vec![16]).init(32, &device);
+//! assert_eq!(fp.forward(xyz, centres, None, features).expect("3 neighbours").dims(), [1, 64, 16]);
+//! ```
+#![deny(missing_docs)]
+
+pub mod pointnet;
+pub mod sampling;

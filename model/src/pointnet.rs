@@ -1,0 +1,329 @@
+//! PointNet / PointNet++ layers (Qi et al. 2017): shared MLPs, set abstraction with ball
+//! grouping (one or several radii) or global pooling, and feature propagation by 3-NN
+//! inverse-distance interpolation.
+//!
+//! Sampling and grouping indices come from [`crate::sampling`] on the points' values, with
+//! no gradient; grouping itself is a gather (`select`) on the tensors, so gradients reach
+//! every grouped point and feature.
+//!
+//! Departure from the authors' release: no batch normalisation inside the shared MLPs
+//! (training here runs on small CPU batches, where its statistics are noisy); every layer
+//! is `Linear` then ReLU.
+
+use burn::nn::{Linear, LinearConfig};
+use burn::prelude::*;
+use burn::tensor::{activation, TensorData};
+
+use crate::sampling::{ball_query, farthest_point_sampling, three_nn, SamplingError};
+
+/// A shared MLP: the same `Linear` + ReLU layers applied to every point (or pair).
+#[derive(Module, Debug)]
+pub struct SharedMlp {
+    layers: Vec<Linear>,
+}
+
+impl SharedMlp {
+    /// Layers of `widths` after an input of `input` channels.
+    pub fn new(input: usize, widths: &[usize], device: &Device) -> Self {
+        let dims = std::iter::once(input).chain(widths.iter().copied());
+        let layers = dims
+            .clone()
+            .zip(widths.iter())
+            .map(|(a, &b)| LinearConfig::new(a, b).init(device))
+            .collect();
+        Self { layers }
+    }
+
+    /// Output channels (the input's if there are no layers).
+    pub fn output(&self, input: usize) -> usize {
+        self.layers.last().map_or(input, |l| l.weight.dims()[1])
+    }
+
+    /// Applies every layer to the last dimension.
+    ///
+    /// # Shapes
+    /// `[..., input]` -> `[..., output]`
+    pub fn forward<const D: usize>(&self, x: Tensor<D>) -> Tensor<D> {
+        self.layers.iter().fold(x, |x, layer| activation::relu(layer.forward(x)))
+    }
+}
+
+/// Settings of a [`SetAbstraction`].
+#[derive(Config, Debug)]
+pub struct SetAbstractionConfig {
+    /// Centres picked by farthest point sampling.
+    pub centres: usize,
+    /// Ball radius of the grouping, normalised units.
+    pub radius: f32,
+    /// Points grouped per centre.
+    pub neighbours: usize,
+    /// Widths of the shared MLP on (relative position, features).
+    pub widths: Vec<usize>,
+}
+
+impl SetAbstractionConfig {
+    /// The layer for inputs with `features` channels (0 for positions only).
+    pub fn init(&self, features: usize, device: &Device) -> SetAbstraction {
+        SetAbstraction {
+            mlp: SharedMlp::new(3 + features, &self.widths, device),
+            centres: self.centres,
+            radius: self.radius,
+            neighbours: self.neighbours,
+        }
+    }
+}
+
+/// Set abstraction: FPS centres, ball groups around them, a shared MLP on each member's
+/// position relative to its centre and its features, max-pooled per group.
+#[derive(Module, Debug)]
+pub struct SetAbstraction {
+    mlp: SharedMlp,
+    #[module(skip)]
+    centres: usize,
+    #[module(skip)]
+    radius: f32,
+    #[module(skip)]
+    neighbours: usize,
+}
+
+impl SetAbstraction {
+    /// Abstracts a batch of clouds; errors if a cloud has fewer points than centres.
+    ///
+    /// # Shapes
+    /// `xyz: [batch, points, 3]`, `features: [batch, points, channels]` ->
+    /// `([batch, centres, 3], [batch, centres, widths.last()])`
+    pub fn forward(
+        &self,
+        xyz: Tensor<3>,
+        features: Option<Tensor<3>>,
+    ) -> Result<(Tensor<3>, Tensor<3>), SamplingError> {
+        let [batch, n, _] = xyz.dims();
+        let clouds = point_lists(&xyz);
+        let mut centre_idx = Vec::with_capacity(batch * self.centres);
+        let mut group_idx = Vec::with_capacity(batch * self.centres * self.neighbours);
+        for (b, cloud) in clouds.iter().enumerate() {
+            let chosen = farthest_point_sampling(cloud, self.centres)?;
+            let centres: Vec<[f32; 3]> = chosen.iter().map(|&i| cloud[i]).collect();
+            let offset = b * n;
+            group_idx.extend(
+                ball_query(cloud, &centres, self.radius, self.neighbours)
+                    .into_iter()
+                    .map(|i| i + offset),
+            );
+            centre_idx.extend(chosen.into_iter().map(|i| i + offset));
+        }
+        let device = xyz.device();
+        let new_xyz =
+            gather_rows(xyz.clone(), &centre_idx, &device).reshape([batch, self.centres, 3]); // [batch, centres, 3]
+        let grouped_xyz = gather_rows(xyz, &group_idx, &device).reshape([
+            batch,
+            self.centres,
+            self.neighbours,
+            3,
+        ]); // [batch, centres, k, 3]
+        let relative = grouped_xyz - new_xyz.clone().unsqueeze_dim::<4>(2);
+        let input = match features {
+            Some(f) => {
+                let channels = f.dims()[2];
+                let grouped = gather_rows(f, &group_idx, &device).reshape([
+                    batch,
+                    self.centres,
+                    self.neighbours,
+                    channels,
+                ]); // [batch, centres, k, channels]
+                Tensor::cat(vec![relative, grouped], 3)
+            }
+            None => relative,
+        };
+        let pooled = self.mlp.forward(input).max_dim(2).squeeze_dim::<3>(2); // [batch, centres, out]
+        Ok((new_xyz, pooled))
+    }
+}
+
+/// Global set abstraction: one group of every point, pooled into one feature per cloud.
+#[derive(Module, Debug)]
+pub struct GlobalAbstraction {
+    mlp: SharedMlp,
+}
+
+impl GlobalAbstraction {
+    /// The layer for inputs with `features` channels, MLP `widths`.
+    pub fn new(features: usize, widths: &[usize], device: &Device) -> Self {
+        Self { mlp: SharedMlp::new(3 + features, widths, device) }
+    }
+
+    /// # Shapes
+    /// `xyz: [batch, points, 3]`, `features: [batch, points, channels]` -> `[batch, 1, out]`
+    pub fn forward(&self, xyz: Tensor<3>, features: Tensor<3>) -> Tensor<3> {
+        self.mlp.forward(Tensor::cat(vec![xyz, features], 2)).max_dim(1) // [batch, 1, out]
+    }
+}
+
+/// Settings of a [`FeaturePropagation`].
+#[derive(Config, Debug)]
+pub struct FeaturePropagationConfig {
+    /// Widths of the shared MLP on (skip features, interpolated features).
+    pub widths: Vec<usize>,
+}
+
+impl FeaturePropagationConfig {
+    /// The layer for `input` channels: skip plus interpolated.
+    pub fn init(&self, input: usize, device: &Device) -> FeaturePropagation {
+        FeaturePropagation { mlp: SharedMlp::new(input, &self.widths, device) }
+    }
+}
+
+/// Feature propagation: features of a coarse set interpolated onto a dense set by 3-NN
+/// inverse-distance weights, joined with the dense set's own (skip) features, then a shared
+/// MLP.
+#[derive(Module, Debug)]
+pub struct FeaturePropagation {
+    mlp: SharedMlp,
+}
+
+impl FeaturePropagation {
+    /// Errors if the coarse set has fewer than 3 points.
+    ///
+    /// # Shapes
+    /// `dense: [batch, n, 3]`, `coarse: [batch, m, 3]`, `skip: [batch, n, c1]`,
+    /// `features: [batch, m, c2]` -> `[batch, n, widths.last()]`
+    pub fn forward(
+        &self,
+        dense: Tensor<3>,
+        coarse: Tensor<3>,
+        skip: Option<Tensor<3>>,
+        features: Tensor<3>,
+    ) -> Result<Tensor<3>, SamplingError> {
+        let [batch, n, _] = dense.dims();
+        let [_, m, channels] = features.dims();
+        let (targets, sources) = (point_lists(&dense), point_lists(&coarse));
+        let mut idx = Vec::with_capacity(batch * n * 3);
+        let mut weights = Vec::with_capacity(batch * n * 3);
+        for (b, (t, s)) in targets.iter().zip(&sources).enumerate() {
+            let (i, w) = three_nn(t, s)?;
+            idx.extend(i.into_iter().map(|i| i + b * m));
+            weights.extend(w);
+        }
+        let device = dense.device();
+        let neighbours = gather_rows(features, &idx, &device).reshape([batch, n, 3, channels]); // [batch, n, 3, c2]
+        let weights = Tensor::<4>::from_data(TensorData::new(weights, [batch, n, 3, 1]), &device);
+        let interpolated = (neighbours * weights).sum_dim(2).squeeze_dim::<3>(2); // [batch, n, c2]
+        let input = match skip {
+            Some(s) => Tensor::cat(vec![s, interpolated], 2),
+            None => interpolated,
+        };
+        Ok(self.mlp.forward(input))
+    }
+}
+
+/// The clouds of a batch as point lists, for the index computations.
+pub fn point_lists(xyz: &Tensor<3>) -> Vec<Vec<[f32; 3]>> {
+    let [batch, n, _] = xyz.dims();
+    let flat: Vec<f32> =
+        xyz.to_data().convert::<f32>().try_to_vec().expect("float data converts to f32");
+    (0..batch)
+        .map(|b| {
+            (0..n)
+                .map(|i| {
+                    let k = (b * n + i) * 3;
+                    [flat[k], flat[k + 1], flat[k + 2]]
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// Rows `indices` of `x` flattened over its first two dimensions, as `[indices.len(), c]`.
+fn gather_rows(x: Tensor<3>, indices: &[usize], device: &Device) -> Tensor<2> {
+    let [batch, n, c] = x.dims();
+    let idx: Vec<i64> = indices.iter().map(|&i| i as i64).collect();
+    let idx = Tensor::<1, Int>::from_data(TensorData::new(idx, [indices.len()]), device);
+    x.reshape([batch * n, c]).select(0, idx) // [indices, c]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::{Rng, SeedableRng};
+
+    fn cloud(n: usize, seed: u64) -> Vec<f32> {
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+        (0..n * 3).map(|_| rng.random_range(-0.5f32..0.5)).collect()
+    }
+
+    fn tensor(values: Vec<f32>, shape: [usize; 3], device: &Device) -> Tensor<3> {
+        Tensor::from_data(TensorData::new(values, shape), device)
+    }
+
+    fn rows(t: Tensor<3>) -> Vec<Vec<f32>> {
+        let [_, n, c] = t.dims();
+        let flat: Vec<f32> = t.into_data().convert::<f32>().try_to_vec().expect("f32");
+        (0..n).map(|i| flat[i * c..(i + 1) * c].to_vec()).collect()
+    }
+
+    #[test]
+    fn permuting_the_points_permutes_the_dense_outputs() {
+        let device = Device::flex();
+        let n = 48;
+        let values = cloud(n, 1);
+        let permutation: Vec<usize> = (0..n).map(|i| (i * 7 + 3) % n).collect();
+        let permuted: Vec<f32> =
+            permutation.iter().flat_map(|&i| values[i * 3..i * 3 + 3].to_vec()).collect();
+        let sa = SetAbstractionConfig::new(12, 0.4, 8, vec![16, 16]).init(0, &device);
+        let fp = FeaturePropagationConfig::new(vec![8]).init(16, &device);
+        let run = |v: Vec<f32>| {
+            let xyz = tensor(v, [1, n, 3], &device);
+            let (centres, f) = sa.forward(xyz.clone(), None).expect("enough points");
+            rows(fp.forward(xyz, centres, None, f).expect("enough centres"))
+        };
+        let (a, b) = (run(values), run(permuted));
+        for (j, &i) in permutation.iter().enumerate() {
+            for (x, y) in a[i].iter().zip(&b[j]) {
+                assert!((x - y).abs() < 1e-5, "point {i}: {:?} vs {:?}", a[i], b[j]);
+            }
+        }
+    }
+
+    #[test]
+    fn gradients_reach_the_grouped_features() {
+        let device = Device::flex().autodiff();
+        let xyz = tensor(cloud(32, 2), [1, 32, 3], &device);
+        let features = tensor(cloud(32, 3), [1, 32, 3], &device).require_grad();
+        let sa = SetAbstractionConfig::new(8, 0.5, 6, vec![8]).init(3, &device);
+        let (_, out) = sa.forward(xyz, Some(features.clone())).expect("enough points");
+        let grads = out.sum().backward();
+        let g = features.grad(&grads).expect("a gradient for the features");
+        let nonzero = g
+            .into_data()
+            .convert::<f32>()
+            .try_to_vec::<f32>()
+            .expect("f32")
+            .iter()
+            .filter(|v| **v != 0.0)
+            .count();
+        assert!(nonzero > 0);
+    }
+
+    #[test]
+    fn too_small_clouds_are_errors_not_panics() {
+        let device = Device::flex();
+        let sa = SetAbstractionConfig::new(16, 0.4, 8, vec![8]).init(0, &device);
+        let err = sa.forward(tensor(cloud(10, 4), [1, 10, 3], &device), None).expect_err("10 < 16");
+        assert_eq!(err, SamplingError::TooFewPoints { wanted: 16, points: 10 });
+        let same = tensor(vec![0.25; 30], [1, 10, 3], &device);
+        let small = SetAbstractionConfig::new(4, 0.4, 8, vec![8]).init(0, &device);
+        let (_, f) = small.forward(same, None).expect("duplicates are fine");
+        assert!(rows(f).iter().flatten().all(|v| v.is_finite()));
+    }
+
+    #[test]
+    fn global_abstraction_pools_each_cloud() {
+        let device = Device::flex();
+        let g = GlobalAbstraction::new(2, &[8, 4], &device);
+        let out = g.forward(
+            tensor(cloud(20, 5), [2, 10, 3], &device),
+            tensor(cloud(20, 6)[..40].to_vec(), [2, 10, 2], &device),
+        );
+        assert_eq!(out.dims(), [2, 1, 4]);
+    }
+}
