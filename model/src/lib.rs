@@ -6,6 +6,8 @@
 //! plain indices (no gradient), and [`pointnet`] turns them into differentiable layers
 //! ([`pointnet::SharedMlp`], [`pointnet::SetAbstraction`], [`pointnet::FeaturePropagation`])
 //! that group features by gather, so gradients flow to every point that was picked.
+//! [`rotation`] projects matrices onto rotations differentiably, for the hypothesis
+//! generator.
 //!
 //! ```
 //! use burn::prelude::*;
@@ -22,4 +24,5 @@
 #![deny(missing_docs)]
 
 pub mod pointnet;
+pub mod rotation;
 pub mod sampling;
