@@ -7,7 +7,7 @@
 //! ([`pointnet::SharedMlp`], [`pointnet::SetAbstraction`], [`pointnet::FeaturePropagation`])
 //! that group features by gather, so gradients flow to every point that was picked.
 //! [`rotation`] projects matrices onto rotations differentiably, for the hypothesis
-//! generator.
+//! generator, and [`losses`] holds the paper's training losses as pure tensor functions.
 //!
 //! ```
 //! use burn::prelude::*;
@@ -23,6 +23,7 @@
 //! ```
 #![deny(missing_docs)]
 
+pub mod losses;
 pub mod pointnet;
 pub mod rotation;
 pub mod sampling;
