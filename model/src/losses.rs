@@ -5,8 +5,7 @@
 
 use burn::prelude::*;
 use burn::tensor::{activation, Bool, TensorData};
-use pathfinding::kuhn_munkres::kuhn_munkres;
-use pathfinding::matrix::Matrix;
+use pairs::metrics::max_assignment;
 
 /// Binary cross-entropy of `logits` against 0/1 `targets`, elementwise, in the stable form
 /// `max(x, 0) - x y + log(1 + exp(-|x|))`.
@@ -110,19 +109,12 @@ pub fn segment_loss(segments: Tensor<3>, parts: Tensor<2, Int>) -> Tensor<1> {
     let values: Vec<f32> = iou.to_data().convert::<f32>().try_to_vec().expect("f32");
     let mut chosen = vec![0.0f32; batch * steps * k];
     for b in 0..batch {
-        let block = &values[b * steps * k..(b + 1) * steps * k];
-        // Square the matrix with zero IoUs so that either side may be the larger.
-        let side = steps.max(k);
-        let weights = Matrix::from_fn(side, side, |(t, j)| {
-            if t < steps && j < k {
-                (block[t * k + j] * 1e6).round() as i64
-            } else {
-                0
+        let block: Vec<f64> =
+            values[b * steps * k..(b + 1) * steps * k].iter().map(|&v| f64::from(v)).collect();
+        for (t, j) in max_assignment(&block, steps, k).into_iter().enumerate() {
+            if let Some(j) = j {
+                chosen[b * steps * k + t * k + j] = 1.0;
             }
-        });
-        let (_, assignment) = kuhn_munkres(&weights);
-        for (t, &j) in assignment.iter().enumerate().filter(|&(t, &j)| t < steps && j < k) {
-            chosen[b * steps * k + t * k + j] = 1.0;
         }
     }
     let chosen = Tensor::<3>::from_data(TensorData::new(chosen, [batch, steps, k]), &device);

@@ -8,7 +8,8 @@ use rand::Rng as _;
 
 use super::catalog::{Category, TRAIN};
 use crate::mesh::Mesh;
-use crate::objects::carcass::{cavity, feet, open_box};
+use crate::objects::carcass::{cavity, open_box};
+use crate::objects::container::corner_feet;
 use crate::objects::controls::button;
 use crate::objects::handle::bar_handle;
 use crate::objects::joints::drop_hinge;
@@ -80,7 +81,7 @@ fn build(rng: &mut Rng) -> ArticulatedObject {
         ),
     ]);
     let (brackets, hinge) = drop_hinge((-hw, hw), kick + g, hd, t, max_open);
-    body.append(Mesh::union([feet(hw, hd, 0.06, kick, 0.015), brackets]));
+    body.append(Mesh::union([corner_feet(hw - 0.06, hd - 0.06, kick, 0.015), brackets]));
     let mut object = ArticulatedObject::new("dishwasher", Link { name: "tub".into(), mesh: body });
     object.attach(
         0,

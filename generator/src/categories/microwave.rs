@@ -7,7 +7,8 @@ use rand::Rng as _;
 
 use super::catalog::{Category, TEST};
 use crate::mesh::Mesh;
-use crate::objects::carcass::{cavity, feet, open_box};
+use crate::objects::carcass::{cavity, open_box};
+use crate::objects::container::corner_feet;
 use crate::objects::controls::{button, knob};
 use crate::objects::door::HingeSide;
 use crate::objects::handle::bar_handle;
@@ -75,7 +76,7 @@ fn build(rng: &mut Rng) -> ArticulatedObject {
             16,
         ),
     ]);
-    body.append(feet(hw, hd, 0.04, foot, 0.015));
+    body.append(corner_feet(hw - 0.04, hd - 0.04, foot, 0.015));
     let x1 = xp - g;
     let dw = x1 + hw;
     let border = [0.12 * dw, 0.22 * dw, 0.18 * h, 0.14 * h];

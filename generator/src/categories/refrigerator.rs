@@ -7,7 +7,8 @@ use rand::Rng as _;
 
 use super::catalog::{Category, TEST};
 use crate::mesh::Mesh;
-use crate::objects::carcass::{feet, open_box};
+use crate::objects::carcass::open_box;
+use crate::objects::container::corner_feet;
 use crate::objects::door::HingeSide;
 use crate::objects::handle::bar_handle;
 use crate::objects::joints::vertical_hinge;
@@ -166,7 +167,7 @@ fn build(rng: &mut Rng) -> ArticulatedObject {
     for o in &openings {
         body.append(shelves(o, -hd + wall, hd));
     }
-    body.append(feet(hw, hd, 0.05, foot, 0.025));
+    body.append(corner_feet(hw - 0.05, hd - 0.05, foot, 0.025));
     let mut object =
         ArticulatedObject::new("refrigerator", Link { name: "cabinet".into(), mesh: body });
     for (i, o) in openings.iter().enumerate() {

@@ -7,7 +7,8 @@ use rand::Rng as _;
 
 use super::catalog::{Category, TEST};
 use crate::mesh::Mesh;
-use crate::objects::carcass::{feet, open_box};
+use crate::objects::carcass::open_box;
+use crate::objects::container::corner_feet;
 use crate::objects::controls::{button, knob};
 use crate::objects::door::HingeSide;
 use crate::objects::drawer::drawer;
@@ -103,7 +104,7 @@ fn build(rng: &mut Rng) -> ArticulatedObject {
         let x = xd + (0.18 + 0.08 * i as Real) * (hw - xd);
         body.append(button(x, ys + 0.25 * strip, hd, (0.05 * (hw - xd), 0.12 * strip), 0.006));
     }
-    body.append(feet(hw, hd, 0.05, foot, 0.02));
+    body.append(corner_feet(hw - 0.05, hd - 0.05, foot, 0.02));
     let cy = ys - 0.05 - r;
     let gasket = 0.008;
     body.append(annulus(Point3::new(0.0, cy, hd + gasket), (0.7 * r, 0.85 * r), 2.0 * gasket, 14));

@@ -28,14 +28,3 @@ pub fn cavity(min: Point3, max: Point3, wall: Real) -> (Point3, Point3) {
         Point3::new(max.x - wall, max.y - wall, max.z),
     )
 }
-
-/// Four round feet `height` tall of `radius` under a body spanning `-hw..hw` and
-/// `-hd..hd`, set in by `inset` from its corners.
-pub fn feet(hw: Real, hd: Real, inset: Real, height: Real, radius: Real) -> Mesh {
-    Mesh::union([(-1.0, -1.0), (-1.0, 1.0), (1.0, -1.0), (1.0, 1.0)].map(
-        |(sx, sz): (Real, Real)| {
-            let (x, z) = (sx * (hw - inset), sz * (hd - inset));
-            Mesh::cylinder(Point3::new(x, 0.0, z), Point3::new(x, height, z), radius, 8)
-        },
-    ))
-}

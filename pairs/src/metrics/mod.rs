@@ -6,7 +6,7 @@ pub mod flow;
 pub mod segmentation;
 
 pub use flow::{end_point_errors, epe, pcc, pcc_at, pcc_auc, PCC_STEP, PCC_THRESHOLDS};
-pub use segmentation::{matched_iou, rand_index, PartMatching};
+pub use segmentation::{matched_iou, max_assignment, rand_index, PartMatching};
 
 /// Inputs a metric cannot score.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

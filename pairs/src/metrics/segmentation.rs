@@ -51,6 +51,25 @@ impl PartMatching {
     }
 }
 
+/// The one-to-one assignment of rows to columns of a `rows x cols` row-major score
+/// matrix (scores in [0, 1]) that maximises the total score (Hungarian algorithm); per row
+/// its column, `None` for rows left over when there are more rows than columns.
+pub fn max_assignment(scores: &[f64], rows: usize, cols: usize) -> Vec<Option<usize>> {
+    // kuhn_munkres wants integer weights and no more rows than columns: scale the scores
+    // and pad the matrix square with zero-score dummy rows and columns.
+    const SCALE: f64 = 1e9;
+    let side = rows.max(cols);
+    let weights = Matrix::from_fn(side, side, |(row, col)| {
+        if row < rows && col < cols {
+            (scores[row * cols + col] * SCALE).round() as i64
+        } else {
+            0
+        }
+    });
+    let (_, assignment) = kuhn_munkres(&weights);
+    assignment.into_iter().take(rows).map(|col| (col < cols).then_some(col)).collect()
+}
+
 /// Matches ground-truth parts (ids `0..K`, `K` the largest id plus one) to predicted
 /// segments, maximising the total IoU.
 pub fn matched_iou(predicted: &[u32], truth: &[u8]) -> Result<PartMatching, MetricError> {
@@ -81,21 +100,14 @@ pub fn matched_iou(predicted: &[u32], truth: &[u8]) -> Result<PartMatching, Metr
             inter as f64 / union as f64
         }
     };
-    // kuhn_munkres wants integer weights and no more rows than columns: scale the IoUs and
-    // pad the matrix square with zero-IoU dummy rows and columns.
-    const SCALE: f64 = 1e9;
-    let side = parts.max(segments.len());
-    let weights = Matrix::from_fn(side, side, |(row, col)| {
-        if row < parts && col < segments.len() {
-            (iou(row, col) * SCALE).round() as i64
-        } else {
-            0
-        }
-    });
-    let (_, assignment) = kuhn_munkres(&weights);
+    let scores: Vec<f64> = (0..parts)
+        .flat_map(|row| (0..segments.len()).map(move |col| (row, col)))
+        .map(|(r, c)| iou(r, c))
+        .collect();
+    let assignment = max_assignment(&scores, parts, segments.len());
     let mut matching = PartMatching { segment: vec![None; parts], iou: vec![0.0; parts] };
-    for (row, &col) in assignment.iter().enumerate().take(parts) {
-        if col < segments.len() && overlap[row][col] > 0 {
+    for (row, col) in assignment.into_iter().enumerate() {
+        if let Some(col) = col.filter(|&col| overlap[row][col] > 0) {
             matching.segment[row] = Some(segments[col]);
             matching.iou[row] = iou(row, col);
         }
