@@ -11,19 +11,35 @@
 //!
 //! ```
 //! use burn::prelude::*;
-//! use model::pointnet::{SetAbstractionConfig, FeaturePropagationConfig};
+//! use model::pointnet::{SetAbstractionConfig, FeaturePropagation};
 //!
 //! let device = Device::flex();
 //! let xyz = Tensor::<3>::random([1, 64, 3], burn::tensor::Distribution::Default, &device);
-//! let sa = SetAbstractionConfig::new(16, 0.4, 8, vec![32, 32]).init(0, &device);
+//! let sa = SetAbstractionConfig::single(16, 0.4, 8, vec![32, 32]).init(0, &device);
 //! let (centres, features) = sa.forward(xyz.clone(), None).expect("64 points");
 //! assert_eq!(features.dims(), [1, 16, 32]);
-//! let fp = FeaturePropagationConfig::new(vec![16]).init(32, &device);
+//! let fp = FeaturePropagation::new(32, &[16], &device);
 //! assert_eq!(fp.forward(xyz, centres, None, features).expect("3 neighbours").dims(), [1, 64, 16]);
 //! ```
 #![deny(missing_docs)]
 
+pub mod backbone;
+pub mod batch;
+pub mod checkpoint;
+pub mod config;
+pub mod correspondence;
+pub mod flow;
+pub mod hypotheses;
+pub mod log;
 pub mod losses;
+pub mod network;
+pub mod objective;
+pub mod plot;
 pub mod pointnet;
+pub mod predict;
 pub mod rotation;
+pub mod rpen;
 pub mod sampling;
+pub mod support;
+pub mod train;
+pub mod validation;

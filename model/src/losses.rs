@@ -1,7 +1,7 @@
 //! The paper's training losses ("Multi-task objective function") as pure tensor functions.
 //! Each returns a scalar tensor (shape `[1]`) averaged over the pairs of the batch; the
 //! weights of the paper (λ_a = λ_b = λ_c = λ_d = 1, λ_e = 0.5, λ_f = λ_g = 1) are applied by
-//! the caller.
+//! the caller ([`crate::objective`]).
 
 use burn::prelude::*;
 use burn::tensor::{activation, Bool, TensorData};
@@ -21,17 +21,21 @@ fn weighted_mean<const D: usize>(values: Tensor<D>, weights: Tensor<D>) -> Tenso
 /// Correspondence loss `L_a + L_b`: softmax cross-entropy of each matched point's true
 /// match among the points of Q, and binary cross-entropy of the correspondence mask.
 ///
+/// `matched` selects the points whose `targets` entry is meaningful (those with a true match
+/// among the given points of Q); `mask` is the correspondence mask's target.
+///
 /// # Shapes
-/// `logits: [batch, n, m]`, `targets: [batch, n]` (indices into m), `mask_logits: [batch, n]`,
-/// `mask: [batch, n]` (1 matched, 0 not) -> `[1]`
+/// `logits: [batch, n, m]`, `targets: [batch, n]` (indices into m), `matched: [batch, n]`,
+/// `mask_logits: [batch, n]`, `mask: [batch, n]` (1 has a correspondence, 0 not) -> `[1]`
 pub fn correspondence_loss(
     logits: Tensor<3>,
     targets: Tensor<2, Int>,
+    matched: Tensor<2>,
     mask_logits: Tensor<2>,
     mask: Tensor<2>,
 ) -> Tensor<1> {
     let picked = activation::log_softmax(logits, 2).gather(2, targets.unsqueeze_dim::<3>(2)); // [batch, n, 1]
-    let l_a = weighted_mean(picked.squeeze_dim::<2>(2).neg(), mask.clone());
+    let l_a = weighted_mean(picked.squeeze_dim::<2>(2).neg(), matched);
     let l_b = bce_with_logits(mask_logits, mask).mean();
     l_a + l_b
 }
@@ -88,19 +92,27 @@ pub fn support_loss(logits: Tensor<3>, parts: Tensor<2, Int>) -> Tensor<1> {
     bce_with_logits(logits, same_part(parts)).mean()
 }
 
-/// Segment loss `L_f`: the negative sum of relaxed IoUs between predicted soft segments
-/// and the ground-truth parts matched to them by the Hungarian algorithm, averaged over
-/// pairs. Parts are `0..K` per pair; `parts` ids at or above `segments.dims()[1]` cannot
-/// all be matched and count 0.
+/// Segment loss `L_f` in a non-negative form: for every ground-truth part, one minus the
+/// relaxed IoU of the predicted soft segment matched to it by the Hungarian algorithm (0 if
+/// none is), summed over parts and averaged over pairs. With K parts only the first K steps
+/// take part in the matching (the paper's sum over `t = 1..K`): the steps after them exist
+/// to learn to stop, and inference reads segments from the first steps, up to the stop. This is the paper's
+/// `-Σ IoU` plus the number of parts, a constant: the gradients are the same, and a perfect
+/// prediction costs 0. Parts are `0..K` per pair.
 ///
 /// # Shapes
 /// `segments: [batch, steps, n]` (probabilities), `parts: [batch, n]` -> `[1]`
 pub fn segment_loss(segments: Tensor<3>, parts: Tensor<2, Int>) -> Tensor<1> {
-    let [batch, steps, _] = segments.dims();
+    let [batch, steps, n] = segments.dims();
     let device = segments.device();
     let ids: Vec<i64> =
         parts.to_data().convert::<i64>().try_to_vec().expect("int data converts to i64");
     let k = ids.iter().copied().max().map_or(1, |m| m as usize + 1);
+    let parts_per_pair: Vec<usize> = ids
+        .chunks(n.max(1))
+        .map(|pair| pair.iter().copied().max().map_or(0, |m| m as usize + 1))
+        .collect();
+    let parts_total: usize = parts_per_pair.iter().sum();
     let truth = one_hot(parts, k); // [batch, n, k]
     let inter = segments.clone().matmul(truth.clone()); // [batch, steps, k]
     let size_y = segments.sum_dim(2); // [batch, steps, 1]
@@ -108,17 +120,18 @@ pub fn segment_loss(segments: Tensor<3>, parts: Tensor<2, Int>) -> Tensor<1> {
     let iou = inter.clone() / (size_y + size_t - inter + 1e-6); // [batch, steps, k]
     let values: Vec<f32> = iou.to_data().convert::<f32>().try_to_vec().expect("f32");
     let mut chosen = vec![0.0f32; batch * steps * k];
-    for b in 0..batch {
+    for (b, &parts_here) in parts_per_pair.iter().enumerate() {
+        let rows = parts_here.min(steps);
         let block: Vec<f64> =
-            values[b * steps * k..(b + 1) * steps * k].iter().map(|&v| f64::from(v)).collect();
-        for (t, j) in max_assignment(&block, steps, k).into_iter().enumerate() {
+            values[b * steps * k..][..rows * k].iter().map(|&v| f64::from(v)).collect();
+        for (t, j) in max_assignment(&block, rows, k).into_iter().enumerate() {
             if let Some(j) = j {
                 chosen[b * steps * k + t * k + j] = 1.0;
             }
         }
     }
     let chosen = Tensor::<3>::from_data(TensorData::new(chosen, [batch, steps, k]), &device);
-    (iou * chosen).sum().neg() / batch as f32
+    ((iou * chosen).sum().neg() + parts_total as f32) / batch as f32
 }
 
 /// Continuation loss `L_g`: with K parts, steps 0..K-2 should continue (1) and steps K-1
@@ -173,6 +186,7 @@ mod tests {
         let l = correspondence_loss(
             floats(vec![0.0; 8], [1, 2, 4]),
             ints(vec![3, 1], [1, 2]),
+            floats(vec![1.0, 0.0], [1, 2]),
             floats(vec![0.0; 2], [1, 2]),
             floats(vec![1.0, 0.0], [1, 2]),
         );
@@ -219,10 +233,13 @@ mod tests {
         // Parts {0, 1} and {2}; the segments come in the other order, plus an empty one.
         let segments = floats(vec![0.0, 0.0, 1.0, 1.0, 1.0, 0.0, 0.0, 0.0, 0.0], [1, 3, 3]);
         let parts = ints(vec![0, 0, 1], [1, 3]);
-        assert!((scalar(segment_loss(segments, parts.clone())) + 2.0).abs() < 1e-4);
+        assert!(scalar(segment_loss(segments, parts.clone())).abs() < 1e-4);
+        // A right segment after the first K steps does not count.
+        let late = floats(vec![0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 0.0], [1, 3, 3]);
+        assert!((scalar(segment_loss(late, parts.clone())) - 2.0).abs() < 1e-4);
         // Half of part 0 in one segment: IoU 1/2 for it, 1 for part 1.
         let partial = floats(vec![1.0, 0.0, 0.0, 0.0, 0.0, 1.0], [1, 2, 3]);
-        assert!((scalar(segment_loss(partial, parts)) + 1.5).abs() < 1e-4);
+        assert!((scalar(segment_loss(partial, parts)) - 0.5).abs() < 1e-4);
     }
 
     #[test]

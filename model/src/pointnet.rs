@@ -10,28 +10,44 @@
 //! (training here runs on small CPU batches, where its statistics are noisy); every layer
 //! is `Linear` then ReLU.
 
-use burn::nn::{Linear, LinearConfig};
+use burn::nn::{Initializer, LayerNorm, LayerNormConfig, Linear, LinearConfig};
 use burn::prelude::*;
 use burn::tensor::{activation, TensorData};
 
 use crate::sampling::{ball_query, farthest_point_sampling, three_nn, SamplingError};
 
-/// A shared MLP: the same `Linear` + ReLU layers applied to every point (or pair).
+/// A `Linear` layer that feeds a ReLU, initialised after He et al. (variance `2 / fan_in`)
+/// so that activations keep their scale through deep stacks without batch normalisation
+/// (burn's default, variance `1 / (3 fan_in)`, shrinks them sixfold per layer, and pair
+/// features collapse to constants).
+pub fn relu_layer(input: usize, output: usize) -> LinearConfig {
+    LinearConfig::new(input, output).with_initializer(Initializer::KaimingUniform {
+        gain: std::f64::consts::SQRT_2,
+        fan_out_only: false,
+    })
+}
+
+/// A shared MLP: the same `Linear` + layer norm + ReLU layers applied to every point (or
+/// pair).
+///
+/// Layer normalisation stands in for the release's batch normalisation: without either,
+/// features stay small and nearly equal across points, and the matching logits (which must
+/// tell points a few hundredths apart) take thousands of steps to leave the uniform
+/// solution. Layer norm needs no batch statistics, so training and inference agree.
 #[derive(Module, Debug)]
 pub struct SharedMlp {
     layers: Vec<Linear>,
+    norms: Vec<LayerNorm>,
 }
 
 impl SharedMlp {
     /// Layers of `widths` after an input of `input` channels.
     pub fn new(input: usize, widths: &[usize], device: &Device) -> Self {
         let dims = std::iter::once(input).chain(widths.iter().copied());
-        let layers = dims
-            .clone()
-            .zip(widths.iter())
-            .map(|(a, &b)| LinearConfig::new(a, b).init(device))
-            .collect();
-        Self { layers }
+        let layers =
+            dims.clone().zip(widths.iter()).map(|(a, &b)| relu_layer(a, b).init(device)).collect();
+        let norms = widths.iter().map(|&w| LayerNormConfig::new(w).init(device)).collect();
+        Self { layers, norms }
     }
 
     /// Output channels (the input's if there are no layers).
@@ -44,15 +60,57 @@ impl SharedMlp {
     /// # Shapes
     /// `[..., input]` -> `[..., output]`
     pub fn forward<const D: usize>(&self, x: Tensor<D>) -> Tensor<D> {
-        self.layers.iter().fold(x, |x, layer| activation::relu(layer.forward(x)))
+        self.layers
+            .iter()
+            .zip(&self.norms)
+            .fold(x, |x, (layer, norm)| activation::relu(norm.forward(layer.forward(x))))
     }
 }
 
-/// Settings of a [`SetAbstraction`].
-#[derive(Config, Debug)]
-pub struct SetAbstractionConfig {
-    /// Centres picked by farthest point sampling.
-    pub centres: usize,
+/// A shared MLP (`Linear` + ReLU layers) ending in one `Linear` layer without activation:
+/// the output head of a module (logits, flow, motion parameters).
+#[derive(Module, Debug)]
+pub struct Head {
+    hidden: SharedMlp,
+    out: Linear,
+}
+
+impl Head {
+    /// Hidden layers of `widths` after `input` channels, then `output` channels from a
+    /// zero-initialised layer: the head starts out predicting 0 (uniform logits, zero flow,
+    /// identity motions), so early training does not push its hidden units to die.
+    pub fn new(input: usize, widths: &[usize], output: usize, device: &Device) -> Self {
+        Self::with_output(
+            input,
+            widths,
+            LinearConfig::new(0, output).with_initializer(Initializer::Zeros),
+            device,
+        )
+    }
+
+    /// Like [`Head::new`] but with burn's default initialisation of the output layer, for
+    /// heads whose outputs feed further layers (features).
+    pub fn dense(input: usize, widths: &[usize], output: usize, device: &Device) -> Self {
+        Self::with_output(input, widths, LinearConfig::new(0, output), device)
+    }
+
+    fn with_output(input: usize, widths: &[usize], out: LinearConfig, device: &Device) -> Self {
+        let hidden = SharedMlp::new(input, widths, device);
+        let out = LinearConfig { d_input: hidden.output(input), ..out }.init(device);
+        Self { hidden, out }
+    }
+
+    /// # Shapes
+    /// `[..., input]` -> `[..., output]`
+    pub fn forward<const D: usize>(&self, x: Tensor<D>) -> Tensor<D> {
+        self.out.forward(self.hidden.forward(x))
+    }
+}
+
+/// One grouping scale of a set abstraction level: a ball and the shared MLP on its members.
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GroupScale {
     /// Ball radius of the grouping, normalised units.
     pub radius: f32,
     /// Points grouped per centre.
@@ -61,29 +119,61 @@ pub struct SetAbstractionConfig {
     pub widths: Vec<usize>,
 }
 
+/// Settings of a [`SetAbstraction`]: its centres and one or more grouping scales (several
+/// scales make the paper's multi-scale grouping; their pooled features are concatenated).
+#[derive(Debug, Clone, PartialEq, serde::Serialize, serde::Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SetAbstractionConfig {
+    /// Centres picked by farthest point sampling.
+    pub centres: usize,
+    /// Grouping scales around the same centres.
+    pub scales: Vec<GroupScale>,
+}
+
 impl SetAbstractionConfig {
+    /// A single-scale level.
+    pub fn single(centres: usize, radius: f32, neighbours: usize, widths: Vec<usize>) -> Self {
+        Self { centres, scales: vec![GroupScale { radius, neighbours, widths }] }
+    }
+
+    /// Channels of the level's output: the last widths of all scales, summed.
+    pub fn output(&self) -> usize {
+        self.scales.iter().map(|s| s.widths.last().copied().unwrap_or(3)).sum()
+    }
+
     /// The layer for inputs with `features` channels (0 for positions only).
     pub fn init(&self, features: usize, device: &Device) -> SetAbstraction {
-        SetAbstraction {
-            mlp: SharedMlp::new(3 + features, &self.widths, device),
-            centres: self.centres,
-            radius: self.radius,
-            neighbours: self.neighbours,
-        }
+        let scales = self
+            .scales
+            .iter()
+            .map(|s| ScaleGroup {
+                mlp: SharedMlp::new(3 + features, &s.widths, device),
+                radius: s.radius,
+                neighbours: s.neighbours,
+            })
+            .collect();
+        SetAbstraction { scales, centres: self.centres }
     }
 }
 
-/// Set abstraction: FPS centres, ball groups around them, a shared MLP on each member's
-/// position relative to its centre and its features, max-pooled per group.
+/// One scale of a [`SetAbstraction`].
 #[derive(Module, Debug)]
-pub struct SetAbstraction {
+struct ScaleGroup {
     mlp: SharedMlp,
-    #[module(skip)]
-    centres: usize,
     #[module(skip)]
     radius: f32,
     #[module(skip)]
     neighbours: usize,
+}
+
+/// Set abstraction: FPS centres, ball groups around them (at one or more radii), a shared
+/// MLP on each member's position relative to its centre and its features, max-pooled per
+/// group; the scales' pooled features are concatenated.
+#[derive(Module, Debug)]
+pub struct SetAbstraction {
+    scales: Vec<ScaleGroup>,
+    #[module(skip)]
+    centres: usize,
 }
 
 impl SetAbstraction {
@@ -91,7 +181,7 @@ impl SetAbstraction {
     ///
     /// # Shapes
     /// `xyz: [batch, points, 3]`, `features: [batch, points, channels]` ->
-    /// `([batch, centres, 3], [batch, centres, widths.last()])`
+    /// `([batch, centres, 3], [batch, centres, output])`
     pub fn forward(
         &self,
         xyz: Tensor<3>,
@@ -100,43 +190,47 @@ impl SetAbstraction {
         let [batch, n, _] = xyz.dims();
         let clouds = point_lists(&xyz);
         let mut centre_idx = Vec::with_capacity(batch * self.centres);
-        let mut group_idx = Vec::with_capacity(batch * self.centres * self.neighbours);
+        let mut centres = Vec::with_capacity(batch);
         for (b, cloud) in clouds.iter().enumerate() {
             let chosen = farthest_point_sampling(cloud, self.centres)?;
-            let centres: Vec<[f32; 3]> = chosen.iter().map(|&i| cloud[i]).collect();
-            let offset = b * n;
-            group_idx.extend(
-                ball_query(cloud, &centres, self.radius, self.neighbours)
-                    .into_iter()
-                    .map(|i| i + offset),
-            );
-            centre_idx.extend(chosen.into_iter().map(|i| i + offset));
+            centres.push(chosen.iter().map(|&i| cloud[i]).collect::<Vec<_>>());
+            centre_idx.extend(chosen.into_iter().map(|i| i + b * n));
         }
         let device = xyz.device();
         let new_xyz =
             gather_rows(xyz.clone(), &centre_idx, &device).reshape([batch, self.centres, 3]); // [batch, centres, 3]
-        let grouped_xyz = gather_rows(xyz, &group_idx, &device).reshape([
-            batch,
-            self.centres,
-            self.neighbours,
-            3,
-        ]); // [batch, centres, k, 3]
-        let relative = grouped_xyz - new_xyz.clone().unsqueeze_dim::<4>(2);
-        let input = match features {
-            Some(f) => {
-                let channels = f.dims()[2];
-                let grouped = gather_rows(f, &group_idx, &device).reshape([
-                    batch,
-                    self.centres,
-                    self.neighbours,
-                    channels,
-                ]); // [batch, centres, k, channels]
-                Tensor::cat(vec![relative, grouped], 3)
-            }
-            None => relative,
-        };
-        let pooled = self.mlp.forward(input).max_dim(2).squeeze_dim::<3>(2); // [batch, centres, out]
-        Ok((new_xyz, pooled))
+        let pooled =
+            self.scales
+                .iter()
+                .map(|scale| {
+                    let k = scale.neighbours;
+                    let mut group_idx = Vec::with_capacity(batch * self.centres * k);
+                    for (b, (cloud, c)) in clouds.iter().zip(&centres).enumerate() {
+                        group_idx.extend(
+                            ball_query(cloud, c, scale.radius, k).into_iter().map(|i| i + b * n),
+                        );
+                    }
+                    let grouped_xyz = gather_rows(xyz.clone(), &group_idx, &device).reshape([
+                        batch,
+                        self.centres,
+                        k,
+                        3,
+                    ]); // [batch, centres, k, 3]
+                    let relative = grouped_xyz - new_xyz.clone().unsqueeze_dim::<4>(2);
+                    let input =
+                        match &features {
+                            Some(f) => {
+                                let channels = f.dims()[2];
+                                let grouped = gather_rows(f.clone(), &group_idx, &device)
+                                    .reshape([batch, self.centres, k, channels]); // [batch, centres, k, channels]
+                                Tensor::cat(vec![relative, grouped], 3)
+                            }
+                            None => relative,
+                        };
+                    scale.mlp.forward(input).max_dim(2).squeeze_dim::<3>(2) // [batch, centres, out]
+                })
+                .collect();
+        Ok((new_xyz, Tensor::cat(pooled, 2)))
     }
 }
 
@@ -159,20 +253,6 @@ impl GlobalAbstraction {
     }
 }
 
-/// Settings of a [`FeaturePropagation`].
-#[derive(Config, Debug)]
-pub struct FeaturePropagationConfig {
-    /// Widths of the shared MLP on (skip features, interpolated features).
-    pub widths: Vec<usize>,
-}
-
-impl FeaturePropagationConfig {
-    /// The layer for `input` channels: skip plus interpolated.
-    pub fn init(&self, input: usize, device: &Device) -> FeaturePropagation {
-        FeaturePropagation { mlp: SharedMlp::new(input, &self.widths, device) }
-    }
-}
-
 /// Feature propagation: features of a coarse set interpolated onto a dense set by 3-NN
 /// inverse-distance weights, joined with the dense set's own (skip) features, then a shared
 /// MLP.
@@ -182,6 +262,11 @@ pub struct FeaturePropagation {
 }
 
 impl FeaturePropagation {
+    /// The layer for `input` channels (skip plus interpolated) and MLP `widths`.
+    pub fn new(input: usize, widths: &[usize], device: &Device) -> Self {
+        Self { mlp: SharedMlp::new(input, widths, device) }
+    }
+
     /// Errors if the coarse set has fewer than 3 points.
     ///
     /// # Shapes
@@ -269,8 +354,8 @@ mod tests {
         let permutation: Vec<usize> = (0..n).map(|i| (i * 7 + 3) % n).collect();
         let permuted: Vec<f32> =
             permutation.iter().flat_map(|&i| values[i * 3..i * 3 + 3].to_vec()).collect();
-        let sa = SetAbstractionConfig::new(12, 0.4, 8, vec![16, 16]).init(0, &device);
-        let fp = FeaturePropagationConfig::new(vec![8]).init(16, &device);
+        let sa = SetAbstractionConfig::single(12, 0.4, 8, vec![16, 16]).init(0, &device);
+        let fp = FeaturePropagation::new(16, &[8], &device);
         let run = |v: Vec<f32>| {
             let xyz = tensor(v, [1, n, 3], &device);
             let (centres, f) = sa.forward(xyz.clone(), None).expect("enough points");
@@ -289,7 +374,7 @@ mod tests {
         let device = Device::flex().autodiff();
         let xyz = tensor(cloud(32, 2), [1, 32, 3], &device);
         let features = tensor(cloud(32, 3), [1, 32, 3], &device).require_grad();
-        let sa = SetAbstractionConfig::new(8, 0.5, 6, vec![8]).init(3, &device);
+        let sa = SetAbstractionConfig::single(8, 0.5, 6, vec![8]).init(3, &device);
         let (_, out) = sa.forward(xyz, Some(features.clone())).expect("enough points");
         let grads = out.sum().backward();
         let g = features.grad(&grads).expect("a gradient for the features");
@@ -307,11 +392,11 @@ mod tests {
     #[test]
     fn too_small_clouds_are_errors_not_panics() {
         let device = Device::flex();
-        let sa = SetAbstractionConfig::new(16, 0.4, 8, vec![8]).init(0, &device);
+        let sa = SetAbstractionConfig::single(16, 0.4, 8, vec![8]).init(0, &device);
         let err = sa.forward(tensor(cloud(10, 4), [1, 10, 3], &device), None).expect_err("10 < 16");
         assert_eq!(err, SamplingError::TooFewPoints { wanted: 16, points: 10 });
         let same = tensor(vec![0.25; 30], [1, 10, 3], &device);
-        let small = SetAbstractionConfig::new(4, 0.4, 8, vec![8]).init(0, &device);
+        let small = SetAbstractionConfig::single(4, 0.4, 8, vec![8]).init(0, &device);
         let (_, f) = small.forward(same, None).expect("duplicates are fine");
         assert!(rows(f).iter().flatten().all(|v| v.is_finite()));
     }

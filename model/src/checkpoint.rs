@@ -1,0 +1,206 @@
+//! Training checkpoints: the network, Adam's state and the trainer's position, written to
+//! temporary names and renamed into place so an interrupted save never leaves a checkpoint
+//! that looks complete. Also loading trained weights for inference.
+
+use std::path::{Path, PathBuf};
+
+use burn::optim::ModuleOptimizer;
+use burn::prelude::*;
+use burn::store::ModuleRecord;
+use serde::{Deserialize, Serialize};
+
+use crate::config::{NetworkConfig, TrainConfig};
+use crate::network::PartNet;
+
+/// The best validation scores so far and when they were reached.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Best {
+    /// Stage of training at the validation.
+    pub stage: u8,
+    /// Training pairs seen.
+    pub pairs: u64,
+    /// Validation EPE.
+    pub epe: f64,
+    /// Validation Rand index.
+    pub rand_index: f64,
+    /// Validation IoU.
+    pub iou: f64,
+}
+
+impl Best {
+    /// Whether `self` beats `other`: a later stage wins; within stage 3 a higher IoU, before
+    /// it (when segments are not trained yet) a lower EPE.
+    pub fn beats(&self, other: &Best) -> bool {
+        if self.stage != other.stage {
+            return self.stage > other.stage;
+        }
+        if self.stage == 3 {
+            self.iou > other.iou
+        } else {
+            self.epe < other.epe
+        }
+    }
+}
+
+/// Where the trainer is: enough to resume exactly.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct TrainState {
+    /// The config the run was started with; a resume must use the same.
+    pub config: TrainConfig,
+    /// Optimiser steps taken.
+    pub step: u64,
+    /// Training pairs consumed.
+    pub pairs: u64,
+    /// The next object of the training stream.
+    pub next_object: u32,
+    /// Wall-clock seconds spent training, over all sessions.
+    pub seconds: f64,
+    /// Best validation so far.
+    pub best: Option<Best>,
+}
+
+/// Why a checkpoint could not be written or read.
+#[derive(Debug, thiserror::Error)]
+pub enum CheckpointError {
+    /// File system error.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The error.
+        #[source]
+        source: std::io::Error,
+    },
+    /// burn could not write or read a record.
+    #[error("{path}: {message}")]
+    Record {
+        /// The file.
+        path: PathBuf,
+        /// burn's message.
+        message: String,
+    },
+    /// The state file is not valid.
+    #[error("{path}: {source}")]
+    State {
+        /// The file.
+        path: PathBuf,
+        /// The parser's error.
+        #[source]
+        source: serde_json::Error,
+    },
+}
+
+fn io(path: &Path) -> impl FnOnce(std::io::Error) -> CheckpointError + '_ {
+    move |source| CheckpointError::Io { path: path.to_path_buf(), source }
+}
+
+fn record(path: &Path) -> impl FnOnce(burn::store::RecordError) -> CheckpointError + '_ {
+    move |e| CheckpointError::Record { path: path.to_path_buf(), message: e.to_string() }
+}
+
+/// A temporary sibling of `path`, renamed onto it once written.
+fn temporary(path: &Path) -> PathBuf {
+    let mut name = path.file_name().unwrap_or_default().to_os_string();
+    name.push(".partial");
+    path.with_file_name(name)
+}
+
+/// Writes the network's weights to `path` (burn's record format).
+pub fn save_weights(net: &PartNet, path: &Path) -> Result<(), CheckpointError> {
+    let tmp = temporary(path);
+    net.clone().into_record().save(&tmp).map_err(record(&tmp))?;
+    std::fs::rename(&tmp, path).map_err(io(path))
+}
+
+/// A network with `config`'s sizes and the weights of `path`, on `device`.
+pub fn load_weights(
+    config: &NetworkConfig,
+    path: &Path,
+    device: &Device,
+) -> Result<PartNet, CheckpointError> {
+    let rec = ModuleRecord::load(path).map_err(record(path))?;
+    let net = PartNet::new(config, device);
+    net.try_load_record(rec).map_err(record(path))
+}
+
+/// The files of a checkpoint folder.
+#[derive(Debug, Clone)]
+pub struct CheckpointDir {
+    root: PathBuf,
+}
+
+impl CheckpointDir {
+    /// The folder `root` (created on the first save).
+    pub fn new(root: impl Into<PathBuf>) -> Self {
+        Self { root: root.into() }
+    }
+
+    /// The folder.
+    pub fn root(&self) -> &Path {
+        &self.root
+    }
+
+    /// The latest weights.
+    pub fn model(&self) -> PathBuf {
+        self.root.join("model.bpk")
+    }
+
+    /// The weights of the best validation so far.
+    pub fn best(&self) -> PathBuf {
+        self.root.join("best.bpk")
+    }
+
+    fn optimizer(&self) -> PathBuf {
+        self.root.join("optimizer.bpk")
+    }
+
+    fn state(&self) -> PathBuf {
+        self.root.join("state.json")
+    }
+
+    /// The saved state, if there is a checkpoint.
+    pub fn load_state(&self) -> Result<Option<TrainState>, CheckpointError> {
+        let path = self.state();
+        if !path.exists() {
+            return Ok(None);
+        }
+        let text = std::fs::read_to_string(&path).map_err(io(&path))?;
+        serde_json::from_str(&text)
+            .map(Some)
+            .map_err(|source| CheckpointError::State { path, source })
+    }
+
+    /// Restores the network and optimiser of the saved checkpoint.
+    pub fn load(
+        &self,
+        config: &NetworkConfig,
+        optimizer: ModuleOptimizer,
+        device: &Device,
+    ) -> Result<(PartNet, ModuleOptimizer), CheckpointError> {
+        let net = load_weights(config, &self.model(), device)?;
+        let path = self.optimizer();
+        let optimizer = optimizer.load(&path).map_err(record(&path))?;
+        Ok((net, optimizer))
+    }
+
+    /// Saves network, optimiser and state; the state is written last, so a checkpoint is
+    /// complete exactly when its state names it.
+    pub fn save(
+        &self,
+        net: &PartNet,
+        optimizer: &ModuleOptimizer,
+        state: &TrainState,
+    ) -> Result<(), CheckpointError> {
+        std::fs::create_dir_all(&self.root).map_err(io(&self.root))?;
+        save_weights(net, &self.model())?;
+        let path = self.optimizer();
+        let tmp = temporary(&path);
+        optimizer.save(&tmp).map_err(record(&tmp))?;
+        std::fs::rename(&tmp, &path).map_err(io(&path))?;
+        let path = self.state();
+        let tmp = temporary(&path);
+        let text = serde_json::to_string_pretty(state).expect("the state serialises");
+        std::fs::write(&tmp, text).map_err(io(&tmp))?;
+        std::fs::rename(&tmp, &path).map_err(io(&path))
+    }
+}

@@ -1,0 +1,318 @@
+//! Network sizes and training settings, read from TOML (`model/configs/<name>.toml`).
+//!
+//! Three configs ship with the crate and are built in by name: `paper` (the sizes of the
+//! authors' release, see DESIGN.md), `cpu` (narrower layers and smaller subsets, for
+//! training on a laptop-class CPU) and `tiny` (for tests).
+
+use std::path::Path;
+
+use serde::{Deserialize, Serialize};
+
+use crate::backbone::BackboneConfig;
+
+/// Sizes of the whole network.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct NetworkConfig {
+    /// Farthest-point subset of each cloud the correspondence and flow modules work on.
+    pub corr_points: usize,
+    /// Farthest-point subset of P (a prefix of the correspondence subset) the segmentation
+    /// module works on.
+    pub seg_points: usize,
+    /// Most segments the recurrent part extraction network produces.
+    pub max_segments: usize,
+    /// Channels of the per-point features of the correspondence module.
+    pub feature_dim: usize,
+    /// Feature extractor, shared by P and Q.
+    pub features: BackboneConfig,
+    /// Pairwise MLP widths on (feature of p_i, feature of q_j).
+    pub pair: Vec<usize>,
+    /// Hidden widths of the matching-score head (then one logit per pair).
+    pub score: Vec<usize>,
+    /// Hidden widths of the correspondence-mask head on the pair features pooled over Q.
+    pub mask: Vec<usize>,
+    /// PointNet widths on (q_j - p_i, matching probability) before pooling over Q.
+    pub flow_pair: Vec<usize>,
+    /// PointNet++ on P's positions and pooled pair features, ending in the flow.
+    pub flow: BackboneConfig,
+    /// PointNet++ on P's centred positions and flow, ending in 12 motion parameters.
+    pub hypothesis: BackboneConfig,
+    /// Support network: per (hypothesis, point) MLP widths before pooling.
+    pub support_local: Vec<usize>,
+    /// Support network: MLP widths on the pooled feature of each hypothesis.
+    pub support_global: Vec<usize>,
+    /// Support network: hidden widths of the head on (local, global), then one logit.
+    pub support_head: Vec<usize>,
+    /// RPEN: PointNet widths on (support, memory) per hypothesis row before pooling.
+    pub rpen_pair: Vec<usize>,
+    /// RPEN: widths of the global MLP over hypotheses (positions and row features).
+    pub rpen_global: Vec<usize>,
+    /// RPEN: widths of the per-hypothesis state `z_t` from (row feature, global).
+    pub rpen_state: Vec<usize>,
+    /// RPEN: hidden widths of the continuation and hypothesis-weight heads.
+    pub rpen_head: Vec<usize>,
+}
+
+/// What is wrong with a config.
+#[derive(Debug, thiserror::Error)]
+pub enum ConfigError {
+    /// The file could not be read.
+    #[error("cannot read config {path}: {source}")]
+    Read {
+        /// The file.
+        path: String,
+        /// The I/O error.
+        #[source]
+        source: std::io::Error,
+    },
+    /// The file is not valid TOML for a config.
+    #[error("config {path} is not a valid training config: {source}")]
+    Parse {
+        /// The file (or built-in name).
+        path: String,
+        /// The parser's error, which names the field.
+        #[source]
+        source: Box<toml::de::Error>,
+    },
+    /// A value is out of range.
+    #[error("config field `{field}`: {problem}")]
+    Invalid {
+        /// The field.
+        field: &'static str,
+        /// What is wrong.
+        problem: String,
+    },
+}
+
+fn invalid(field: &'static str, problem: impl Into<String>) -> ConfigError {
+    ConfigError::Invalid { field, problem: problem.into() }
+}
+
+impl NetworkConfig {
+    /// Checks sizes that would otherwise fail deep inside a forward pass.
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        if self.seg_points == 0 || self.seg_points > self.corr_points {
+            return Err(invalid("network.seg_points", "must be in 1..=corr_points"));
+        }
+        if self.max_segments < 1 {
+            return Err(invalid("network.max_segments", "must be at least 1"));
+        }
+        for (field, widths) in [
+            ("network.pair", &self.pair),
+            ("network.flow_pair", &self.flow_pair),
+            ("network.support_local", &self.support_local),
+            ("network.rpen_pair", &self.rpen_pair),
+            ("network.rpen_global", &self.rpen_global),
+            ("network.rpen_state", &self.rpen_state),
+        ] {
+            if widths.is_empty() || widths.contains(&0) {
+                return Err(invalid(field, "needs at least one layer, all widths positive"));
+            }
+        }
+        for (field, backbone, points) in [
+            ("network.features", &self.features, self.corr_points),
+            ("network.flow", &self.flow, self.corr_points),
+            ("network.hypothesis", &self.hypothesis, self.corr_points),
+        ] {
+            if backbone.levels.is_empty() {
+                return Err(invalid(field, "needs at least one set abstraction level"));
+            }
+            if backbone.propagation.len() != backbone.levels.len() + 1 {
+                return Err(invalid(field, "needs one propagation entry per level, plus one"));
+            }
+            let mut available = points;
+            for level in &backbone.levels {
+                if level.centres < 3 || level.centres > available || level.scales.is_empty() {
+                    return Err(invalid(
+                        field,
+                        format!(
+                            "level centres must be in 3..={available} (the points it receives) with at least one scale"
+                        ),
+                    ));
+                }
+                available = level.centres;
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Points of P and Q per training pair, and how the trainer feeds and schedules them.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TrainConfig {
+    /// Config name, used for output folders.
+    pub name: String,
+    /// Points per cloud N of the training and validation pairs.
+    pub points: u32,
+    /// Pairs per optimiser step.
+    pub batch: usize,
+    /// Adam's initial learning rate.
+    pub learning_rate: f64,
+    /// Factor applied to the learning rate every `decay_every_pairs` pairs.
+    pub decay: f64,
+    /// Pairs between learning-rate decays.
+    pub decay_every_pairs: u64,
+    /// Smallest learning rate.
+    pub min_learning_rate: f64,
+    /// Pairs of stage 1 (correspondence and flow).
+    pub stage1_pairs: u64,
+    /// Pairs of stage 2 (hypotheses and support, on ground-truth flow).
+    pub stage2_pairs: u64,
+    /// Pairs of stage 3 (every loss, end to end).
+    pub stage3_pairs: u64,
+    /// Largest norm of each parameter's gradient; larger ones are scaled down (burn's
+    /// per-parameter norm clipping), which keeps the Hungarian-matched segment loss from
+    /// throwing training off when its matching switches.
+    pub clip_gradient_norm: f32,
+    /// Whether stage 3 back-propagates the segmentation losses into the flow and
+    /// correspondence modules (the paper) or feeds the segmentation module a detached flow
+    /// (the authors' release, which freezes the earlier modules; steadier on small batches).
+    pub end_to_end: bool,
+    /// Largest angle of the random rotation applied to both clouds of a training pair,
+    /// degrees (180: any rotation).
+    pub augment_rotation_deg: f64,
+    /// Seed of the training stream and the augmentation.
+    pub seed: u64,
+    /// Pairs in the fixed validation set (validation categories).
+    pub validation_pairs: u32,
+    /// Pairs between validations.
+    pub validate_every_pairs: u64,
+    /// Minutes between checkpoints.
+    pub checkpoint_minutes: f64,
+    /// Network sizes.
+    pub network: NetworkConfig,
+}
+
+/// The configs built into the crate, by name.
+pub const BUILT_IN: [(&str, &str); 3] = [
+    ("paper", include_str!("../configs/paper.toml")),
+    ("cpu", include_str!("../configs/cpu.toml")),
+    ("tiny", include_str!("../configs/tiny.toml")),
+];
+
+impl TrainConfig {
+    /// Parses and checks a config from TOML text; `origin` names it in errors.
+    pub fn from_toml(text: &str, origin: &str) -> Result<Self, ConfigError> {
+        let config: Self = toml::from_str(text)
+            .map_err(|e| ConfigError::Parse { path: origin.to_string(), source: Box::new(e) })?;
+        config.validate()?;
+        Ok(config)
+    }
+
+    /// Reads a config file, or a built-in config by name (`paper`, `cpu`, `tiny`).
+    pub fn load(path_or_name: &str) -> Result<Self, ConfigError> {
+        if let Some((name, text)) = BUILT_IN.iter().find(|(n, _)| *n == path_or_name) {
+            return Self::from_toml(text, name);
+        }
+        let text = std::fs::read_to_string(Path::new(path_or_name))
+            .map_err(|source| ConfigError::Read { path: path_or_name.to_string(), source })?;
+        Self::from_toml(&text, path_or_name)
+    }
+
+    /// A built-in config by name; panics on an unknown name (for tests and examples).
+    pub fn built_in(name: &str) -> Self {
+        let (_, text) = BUILT_IN.iter().find(|(n, _)| *n == name).expect("a built-in config");
+        Self::from_toml(text, name).expect("built-in configs are valid")
+    }
+
+    /// Checks every field.
+    pub fn validate(&self) -> Result<(), ConfigError> {
+        if self.name.is_empty()
+            || !self.name.chars().all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_')
+        {
+            return Err(invalid("name", "must be non-empty ASCII letters, digits, '-' or '_'"));
+        }
+        if (self.points as usize) < self.network.corr_points {
+            return Err(invalid("points", "must be at least network.corr_points"));
+        }
+        if self.batch == 0 {
+            return Err(invalid("batch", "must be at least 1"));
+        }
+        for (field, v) in [
+            ("learning_rate", self.learning_rate),
+            ("decay", self.decay),
+            ("min_learning_rate", self.min_learning_rate),
+            ("checkpoint_minutes", self.checkpoint_minutes),
+            ("clip_gradient_norm", f64::from(self.clip_gradient_norm)),
+        ] {
+            if !(v.is_finite() && v > 0.0) {
+                return Err(invalid(field, "must be a positive number"));
+            }
+        }
+        if !(0.0..=180.0).contains(&self.augment_rotation_deg) {
+            return Err(invalid("augment_rotation_deg", "must be in [0, 180]"));
+        }
+        if self.decay_every_pairs == 0 || self.validate_every_pairs == 0 {
+            return Err(invalid("decay_every_pairs", "pair counts must be positive"));
+        }
+        if self.stage1_pairs + self.stage2_pairs + self.stage3_pairs == 0 {
+            return Err(invalid("stage3_pairs", "at least one stage needs pairs"));
+        }
+        self.network.validate()
+    }
+
+    /// Total pairs of all stages.
+    pub fn total_pairs(&self) -> u64 {
+        self.stage1_pairs + self.stage2_pairs + self.stage3_pairs
+    }
+
+    /// The training stage (1, 2 or 3) after `pairs` training pairs.
+    pub fn stage_at(&self, pairs: u64) -> u8 {
+        if pairs < self.stage1_pairs {
+            1
+        } else if pairs < self.stage1_pairs + self.stage2_pairs {
+            2
+        } else {
+            3
+        }
+    }
+
+    /// The learning rate after `pairs` training pairs (step decay with a floor).
+    pub fn learning_rate_at(&self, pairs: u64) -> f64 {
+        let decays = (pairs / self.decay_every_pairs) as i32;
+        (self.learning_rate * self.decay.powi(decays)).max(self.min_learning_rate)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn built_in_configs_parse_and_validate() {
+        for (name, _) in BUILT_IN {
+            let c = TrainConfig::built_in(name);
+            assert_eq!(c.name, name);
+        }
+    }
+
+    #[test]
+    fn errors_name_the_field() {
+        let mut text = BUILT_IN[2].1.replace("batch = ", "batch = 0 #");
+        let err = TrainConfig::from_toml(&text, "t").expect_err("batch 0").to_string();
+        assert!(err.contains("batch"), "{err}");
+        text = BUILT_IN[2].1.replace("seg_points = ", "seg_points = 100000 #");
+        let err = TrainConfig::from_toml(&text, "t").expect_err("seg > corr").to_string();
+        assert!(err.contains("network.seg_points"), "{err}");
+        let err = TrainConfig::from_toml("name = 3", "t").expect_err("bad toml").to_string();
+        assert!(err.contains("name"), "{err}");
+    }
+
+    #[test]
+    fn schedule_decays_to_a_floor_and_stages_follow_each_other() {
+        let c = TrainConfig {
+            learning_rate: 1e-4,
+            decay: 0.5,
+            decay_every_pairs: 10,
+            min_learning_rate: 3e-5,
+            stage1_pairs: 5,
+            stage2_pairs: 5,
+            ..TrainConfig::built_in("tiny")
+        };
+        assert_eq!(c.learning_rate_at(9), 1e-4);
+        assert_eq!(c.learning_rate_at(10), 5e-5);
+        assert_eq!(c.learning_rate_at(1000), 3e-5);
+        assert_eq!((c.stage_at(4), c.stage_at(5), c.stage_at(10)), (1, 2, 3));
+    }
+}

@@ -1,0 +1,74 @@
+//! The correspondence proposal module: shared PointNet++ features on P and Q, a pairwise MLP
+//! giving a matching logit for every (p_i, q_j), and a correspondence mask from the pair
+//! features pooled over Q.
+
+use burn::nn::Linear;
+use burn::prelude::*;
+use burn::tensor::activation;
+
+use crate::backbone::Backbone;
+use crate::config::NetworkConfig;
+use crate::pointnet::{relu_layer, Head, SharedMlp};
+use crate::sampling::SamplingError;
+
+/// What the module outputs for a batch of pairs.
+#[derive(Debug, Clone)]
+pub struct Correspondence {
+    /// Matching logits `c_ij`, `[batch, m, m]` (softmax over j gives M).
+    pub logits: Tensor<3>,
+    /// Correspondence-mask logits per point of P, `[batch, m]`.
+    pub mask_logits: Tensor<2>,
+}
+
+impl Correspondence {
+    /// The refined matching matrix `M̂ = softmax_j(c_ij) · sigmoid(c_i)`, `[batch, m, m]`.
+    pub fn refined(&self) -> Tensor<3> {
+        activation::softmax(self.logits.clone(), 2)
+            * activation::sigmoid(self.mask_logits.clone()).unsqueeze_dim::<3>(2)
+    }
+}
+
+/// The correspondence proposal module.
+#[derive(Module, Debug)]
+pub struct CorrespondenceModule {
+    features: Backbone,
+    pair_p: Linear,
+    pair_q: Linear,
+    pair: SharedMlp,
+    score: Head,
+    mask: Head,
+}
+
+impl CorrespondenceModule {
+    /// The module with `config`'s sizes.
+    pub fn new(config: &NetworkConfig, device: &Device) -> Self {
+        let first = config.pair[0];
+        let pair = SharedMlp::new(first, &config.pair[1..], device);
+        let width = pair.output(first);
+        Self {
+            features: config.features.init(0, config.feature_dim, false, device),
+            // The first pair layer on concat(u_i, u_j) is W_p u_i + W_q u_j: computed per
+            // point, then broadcast over pairs.
+            pair_p: relu_layer(config.feature_dim, first).init(device),
+            pair_q: relu_layer(config.feature_dim, first).with_bias(false).init(device),
+            pair,
+            score: Head::new(width, &config.score, 1, device),
+            mask: Head::new(width, &config.mask, 1, device),
+        }
+    }
+
+    /// # Shapes
+    /// `p, q: [batch, m, 3]` -> logits `[batch, m, m]`, mask logits `[batch, m]`
+    pub fn forward(&self, p: Tensor<3>, q: Tensor<3>) -> Result<Correspondence, SamplingError> {
+        let [batch, m, _] = p.dims();
+        let both = self.features.forward(Tensor::cat(vec![p, q], 0), None)?; // [2 batch, m, d]
+        let u_p = both.clone().narrow(0, 0, batch);
+        let u_q = both.narrow(0, batch, batch);
+        let a = self.pair_p.forward(u_p).unsqueeze_dim::<4>(2); // [batch, m, 1, w]
+        let b = self.pair_q.forward(u_q).unsqueeze_dim::<4>(1); // [batch, 1, m, w]
+        let h = self.pair.forward(activation::relu(a + b)); // [batch, m, m, w]
+        let logits = self.score.forward(h.clone()).reshape([batch, m, m]);
+        let mask_logits = self.mask.forward(h.max_dim(2)).reshape([batch, m]);
+        Ok(Correspondence { logits, mask_logits })
+    }
+}

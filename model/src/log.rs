@@ -1,0 +1,180 @@
+//! The training log: one CSV row per step (`log.csv`), one per validation (`validation.csv`),
+//! and `loss.png`, redrawn at every checkpoint. On resume, rows after the checkpoint's step
+//! (work that was lost) are dropped, so the files always match the weights.
+
+use std::fs::File;
+use std::io::{BufRead, BufReader, BufWriter, Write};
+use std::path::{Path, PathBuf};
+
+use crate::objective::{LossTerms, TERM_NAMES};
+use crate::plot::{draw_loss_curves, Curves};
+use crate::validation::Scores;
+
+/// One optimiser step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StepRow {
+    /// Steps taken, this one included.
+    pub step: u64,
+    /// Training pairs consumed, this step's included.
+    pub pairs: u64,
+    /// Training stage (1, 2, 3).
+    pub stage: u8,
+    /// Learning rate of the step.
+    pub learning_rate: f64,
+    /// Total weighted loss.
+    pub loss: f32,
+    /// Its terms.
+    pub terms: LossTerms,
+    /// Wall-clock seconds of the step.
+    pub seconds: f64,
+}
+
+/// One validation.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ValidationRow {
+    /// Steps taken.
+    pub step: u64,
+    /// Training pairs consumed.
+    pub pairs: u64,
+    /// Stage of the weights scored.
+    pub stage: u8,
+    /// The scores.
+    pub scores: Scores,
+}
+
+/// Why the log could not be written.
+#[derive(Debug, thiserror::Error)]
+pub enum LogError {
+    /// File system error.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The error.
+        #[source]
+        source: std::io::Error,
+    },
+    /// The plot could not be drawn.
+    #[error("{path}: {message}")]
+    Plot {
+        /// The file.
+        path: PathBuf,
+        /// What went wrong.
+        message: String,
+    },
+}
+
+fn io(path: &Path) -> impl FnOnce(std::io::Error) -> LogError + '_ {
+    move |source| LogError::Io { path: path.to_path_buf(), source }
+}
+
+const STEP_HEADER: &str = "step,pairs,stage,learning_rate,loss";
+const VALIDATION_HEADER: &str = "step,pairs,stage,epe,rand_index,iou";
+
+/// The open log of a run.
+#[derive(Debug)]
+pub struct Log {
+    dir: PathBuf,
+    steps: BufWriter<File>,
+    validations: BufWriter<File>,
+    curves: Curves,
+}
+
+/// Keeps the rows of `path` up to step `last` (the first column), rewriting the file, and
+/// opens it for appending; returns the kept rows.
+fn reopen(
+    path: &Path,
+    header: &str,
+    last: u64,
+) -> Result<(BufWriter<File>, Vec<Vec<f64>>), LogError> {
+    let mut kept = Vec::new();
+    if path.exists() {
+        let file = File::open(path).map_err(io(path))?;
+        for line in BufReader::new(file).lines().skip(1) {
+            let line = line.map_err(io(path))?;
+            let fields: Vec<f64> = line.split(',').map(|f| f.parse().unwrap_or(f64::NAN)).collect();
+            if fields.first().is_some_and(|&s| s <= last as f64) {
+                kept.push((line, fields));
+            }
+        }
+    }
+    let tmp = path.with_extension("csv.partial");
+    {
+        let mut out = BufWriter::new(File::create(&tmp).map_err(io(&tmp))?);
+        writeln!(out, "{header}").map_err(io(&tmp))?;
+        for (line, _) in &kept {
+            writeln!(out, "{line}").map_err(io(&tmp))?;
+        }
+        out.flush().map_err(io(&tmp))?;
+    }
+    std::fs::rename(&tmp, path).map_err(io(path))?;
+    let file = std::fs::OpenOptions::new().append(true).open(path).map_err(io(path))?;
+    Ok((BufWriter::new(file), kept.into_iter().map(|(_, f)| f).collect()))
+}
+
+fn optional(v: Option<f32>) -> String {
+    v.map(|v| v.to_string()).unwrap_or_default()
+}
+
+impl Log {
+    /// Opens the log in `dir`, keeping rows up to step `last`.
+    pub fn open(dir: &Path, last: u64) -> Result<Self, LogError> {
+        std::fs::create_dir_all(dir).map_err(io(dir))?;
+        let header = format!("{STEP_HEADER},{},seconds", TERM_NAMES.join(","));
+        let (steps, rows) = reopen(&dir.join("log.csv"), &header, last)?;
+        let (validations, vrows) = reopen(&dir.join("validation.csv"), VALIDATION_HEADER, last)?;
+        let mut curves = Curves::default();
+        for r in rows {
+            curves.loss.push((r[1], r[2] as u8, r[4]));
+        }
+        for r in vrows {
+            curves.validation.push((r[1], r[3], r[5]));
+        }
+        Ok(Self { dir: dir.to_path_buf(), steps, validations, curves })
+    }
+
+    /// Appends a step.
+    pub fn step(&mut self, row: &StepRow) -> Result<(), LogError> {
+        let terms: Vec<String> = row.terms.values().iter().map(|v| optional(*v)).collect();
+        let path = self.dir.join("log.csv");
+        writeln!(
+            self.steps,
+            "{},{},{},{},{},{},{:.3}",
+            row.step,
+            row.pairs,
+            row.stage,
+            row.learning_rate,
+            row.loss,
+            terms.join(","),
+            row.seconds
+        )
+        .map_err(io(&path))?;
+        self.steps.flush().map_err(io(&path))?;
+        self.curves.loss.push((row.pairs as f64, row.stage, f64::from(row.loss)));
+        Ok(())
+    }
+
+    /// Appends a validation.
+    pub fn validation(&mut self, row: &ValidationRow) -> Result<(), LogError> {
+        let s = row.scores;
+        let path = self.dir.join("validation.csv");
+        writeln!(
+            self.validations,
+            "{},{},{},{},{},{}",
+            row.step, row.pairs, row.stage, s.epe, s.rand_index, s.iou
+        )
+        .map_err(io(&path))?;
+        self.validations.flush().map_err(io(&path))?;
+        self.curves.validation.push((row.pairs as f64, s.epe, s.iou));
+        Ok(())
+    }
+
+    /// Flushes the CSVs and redraws `loss.png`.
+    pub fn plot(&mut self) -> Result<(), LogError> {
+        let path = self.dir.join("log.csv");
+        self.steps.flush().map_err(io(&path))?;
+        let png = self.dir.join("loss.png");
+        draw_loss_curves(&self.curves, &png)
+            .map_err(|message| LogError::Plot { path: png.clone(), message })
+    }
+}

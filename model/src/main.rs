@@ -1,0 +1,161 @@
+//! `model`: train the network stage by stage, or score trained weights on the validation set.
+
+use std::path::PathBuf;
+
+use anyhow::{Context, Result};
+use burn::prelude::*;
+use clap::{Parser, Subcommand, ValueEnum};
+use indicatif::{ProgressBar, ProgressStyle};
+use model::checkpoint::{load_weights, CheckpointDir};
+use model::config::TrainConfig;
+use model::train::{RunPaths, Trainer};
+use model::validation::{score, validation_pairs};
+
+#[derive(Parser, Debug)]
+#[command(
+    version,
+    about = "Train and validate the part-induction network of Yi et al. 2018",
+    after_help = "Examples:\n  \
+        model train --config model/configs/cpu.toml      # train (or resume) the CPU config\n  \
+        model train --config tiny --max-steps 20         # a built-in config by name\n  \
+        model validate --config cpu --weights model/weights/cpu/model.bpk"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Train stage by stage; resumes from the checkpoint folder if it holds a checkpoint.
+    Train {
+        /// Config file, or a built-in name (paper, cpu, tiny).
+        #[arg(long)]
+        config: String,
+        /// Checkpoint folder [default: checkpoints/<config name>].
+        #[arg(long)]
+        checkpoints: Option<PathBuf>,
+        /// Report folder for log.csv, validation.csv and loss.png
+        /// [default: reports/training/<config name>].
+        #[arg(long)]
+        reports: Option<PathBuf>,
+        /// Stop after this many steps (a checkpoint is written), e.g. to time a config.
+        #[arg(long)]
+        max_steps: Option<u64>,
+        /// Device to train on.
+        #[arg(long, value_enum, default_value_t = DeviceKind::Cpu)]
+        device: DeviceKind,
+    },
+    /// Score weights on the config's validation set (EPE, Rand index, IoU).
+    Validate {
+        /// Config file, or a built-in name; its network sizes must match the weights.
+        #[arg(long)]
+        config: String,
+        /// Weights file (burn record, e.g. checkpoints/cpu/best.bpk).
+        #[arg(long)]
+        weights: PathBuf,
+    },
+}
+
+/// Where tensors live.
+#[derive(Debug, Clone, Copy, ValueEnum)]
+enum DeviceKind {
+    /// burn's flex CPU backend.
+    Cpu,
+    /// NVIDIA GPU 0 (build with `--features cuda`).
+    Cuda,
+}
+
+fn device(kind: DeviceKind) -> Result<Device> {
+    match kind {
+        DeviceKind::Cpu => Ok(Device::flex()),
+        #[cfg(feature = "cuda")]
+        DeviceKind::Cuda => Ok(Device::cuda(0)),
+        #[cfg(not(feature = "cuda"))]
+        DeviceKind::Cuda => {
+            anyhow::bail!("this build has no CUDA support; rebuild with `--features cuda`")
+        }
+    }
+}
+
+fn main() -> Result<()> {
+    tracing_subscriber::fmt()
+        .with_env_filter(
+            tracing_subscriber::EnvFilter::try_from_default_env()
+                .unwrap_or_else(|_| tracing_subscriber::EnvFilter::new("info")),
+        )
+        .with_writer(std::io::stderr)
+        .init();
+    match Cli::parse().command {
+        Command::Train { config, checkpoints, reports, max_steps, device: kind } => {
+            let config = TrainConfig::load(&config)?;
+            let mut paths = RunPaths::for_config(&config);
+            if let Some(dir) = checkpoints {
+                paths.checkpoints = CheckpointDir::new(dir);
+            }
+            if let Some(dir) = reports {
+                paths.reports = dir;
+            }
+            let total = config.total_pairs();
+            let mut trainer = Trainer::new(config, paths.clone(), device(kind)?.autodiff())
+                .context("starting the run")?;
+            let bar = ProgressBar::new(total).with_style(
+                ProgressStyle::with_template(
+                    "{elapsed_precise} [{bar:30}] {pos}/{len} pairs ({per_sec}, eta {eta}) {msg}",
+                )
+                .expect("a valid template")
+                .progress_chars("=> "),
+            );
+            bar.set_position(trainer.state().pairs);
+            trainer
+                .run(max_steps, |p| {
+                    bar.set_position(p.row.pairs);
+                    let v = p.validation.map_or(String::new(), |v| {
+                        format!(
+                            " | val EPE {:.3} RI {:.3} IoU {:.3}",
+                            v.scores.epe, v.scores.rand_index, v.scores.iou
+                        )
+                    });
+                    bar.set_message(format!("stage {} loss {:.4}{v}", p.row.stage, p.row.loss));
+                })
+                .context("training")?;
+            bar.finish();
+            let state = trainer.state();
+            println!(
+                "{} steps, {} pairs, {:.0} s of training; checkpoint in {}, log in {}",
+                state.step,
+                state.pairs,
+                state.seconds,
+                paths.checkpoints.root().display(),
+                paths.reports.display()
+            );
+            if let Some(best) = state.best {
+                println!(
+                    "best validation (stage {}, {} pairs): EPE {:.4}, RI {:.4}, IoU {:.4} -> {}",
+                    best.stage,
+                    best.pairs,
+                    best.epe,
+                    best.rand_index,
+                    best.iou,
+                    paths.checkpoints.best().display()
+                );
+            }
+        }
+        Command::Validate { config, weights } => {
+            let config = TrainConfig::load(&config)?;
+            let net = load_weights(&config.network, &weights, &Device::flex())
+                .with_context(|| format!("loading weights {}", weights.display()))?;
+            let pairs = validation_pairs(config.points, config.validation_pairs)
+                .context("generating the validation pairs")?;
+            let s = score(&net, &pairs)?;
+            println!(
+                "{} validation pairs: EPE {:.4}, RI {:.4}, IoU {:.4}",
+                pairs.len(),
+                s.epe,
+                s.rand_index,
+                s.iou
+            );
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,114 @@
+//! The whole network: correspondence proposal, flow, and the segmentation module
+//! (hypotheses, support, RPEN), as one burn module with one forward per training stage.
+
+use burn::prelude::*;
+use burn::tensor::activation;
+
+use crate::config::NetworkConfig;
+use crate::correspondence::{Correspondence, CorrespondenceModule};
+use crate::flow::FlowModule;
+use crate::hypotheses::{Hypotheses, HypothesisModule};
+use crate::rpen::{RpenModule, Segments};
+use crate::sampling::SamplingError;
+use crate::support::SupportModule;
+
+/// The network of Yi et al. 2018.
+#[derive(Module, Debug)]
+pub struct PartNet {
+    correspondence: CorrespondenceModule,
+    flow: FlowModule,
+    hypotheses: HypothesisModule,
+    support: SupportModule,
+    rpen: RpenModule,
+    #[module(skip)]
+    corr_points: usize,
+    #[module(skip)]
+    seg_points: usize,
+    #[module(skip)]
+    max_segments: usize,
+}
+
+/// The flow stage's outputs.
+#[derive(Debug, Clone)]
+pub struct FlowOutput {
+    /// Matching logits and correspondence mask.
+    pub correspondence: Correspondence,
+    /// Flow on the correspondence subset of P, `[batch, m, 3]`.
+    pub flow: Tensor<3>,
+}
+
+/// The segmentation module's outputs, on the segmentation subset (the first s points).
+#[derive(Debug, Clone)]
+pub struct SegmentationOutput {
+    /// One rigid-motion hypothesis per point.
+    pub hypotheses: Hypotheses,
+    /// Support logits `[batch, s, s]`, rows hypotheses.
+    pub support_logits: Tensor<3>,
+    /// RPEN segments and continuation logits (absent when no steps were asked for).
+    pub segments: Option<Segments>,
+}
+
+impl PartNet {
+    /// A freshly initialised network with `config`'s sizes (weights from burn's default
+    /// initialisers, seeded by the device's RNG).
+    pub fn new(config: &NetworkConfig, device: &Device) -> Self {
+        Self {
+            correspondence: CorrespondenceModule::new(config, device),
+            flow: FlowModule::new(config, device),
+            hypotheses: HypothesisModule::new(config, device),
+            support: SupportModule::new(config, device),
+            rpen: RpenModule::new(config, device),
+            corr_points: config.corr_points,
+            seg_points: config.seg_points,
+            max_segments: config.max_segments,
+        }
+    }
+
+    /// Correspondences and flow on the correspondence subsets of P and Q.
+    ///
+    /// # Shapes
+    /// `p, q: [batch, m, 3]`
+    pub fn flow(&self, p: Tensor<3>, q: Tensor<3>) -> Result<FlowOutput, SamplingError> {
+        let correspondence = self.correspondence.forward(p.clone(), q.clone())?;
+        let flow = self.flow.forward(p, q, correspondence.refined())?;
+        Ok(FlowOutput { correspondence, flow })
+    }
+
+    /// Hypotheses and support on the first s points of P given a flow, and `steps` RPEN
+    /// steps (none for stage 2).
+    ///
+    /// # Shapes
+    /// `p, flow: [batch, m, 3]`
+    pub fn segment(
+        &self,
+        p: Tensor<3>,
+        flow: Tensor<3>,
+        steps: usize,
+    ) -> Result<SegmentationOutput, SamplingError> {
+        let [batch, _, _] = p.dims();
+        let s = self.seg_points;
+        let hypotheses = self.hypotheses.forward(p.clone(), flow.clone(), s)?;
+        let (p_s, f_s) = (p.slice([0..batch, 0..s]), flow.slice([0..batch, 0..s]));
+        let support_logits = self.support.forward(p_s.clone(), f_s, &hypotheses);
+        let segments = (steps > 0).then(|| {
+            let centred = p_s.clone() - p_s.mean_dim(1);
+            self.rpen.forward(centred, activation::sigmoid(support_logits.clone()), steps)
+        });
+        Ok(SegmentationOutput { hypotheses, support_logits, segments })
+    }
+
+    /// Points of the correspondence subsets.
+    pub fn corr_points(&self) -> usize {
+        self.corr_points
+    }
+
+    /// Points of the segmentation subset.
+    pub fn seg_points(&self) -> usize {
+        self.seg_points
+    }
+
+    /// Most RPEN steps at inference.
+    pub fn max_segments(&self) -> usize {
+        self.max_segments
+    }
+}

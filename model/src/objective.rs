@@ -1,0 +1,125 @@
+//! The multi-task objective of each training stage, with the paper's weights:
+//! stage 1 `L_a + L_b + L_flow`; stage 2 `L_motion + 0.5 L_e` on ground-truth flow;
+//! stage 3 every term, the segmentation module on the predicted flow (detached unless the
+//! run is end to end).
+
+use burn::prelude::*;
+
+use crate::batch::TrainingBatch;
+use crate::losses::{
+    continuation_loss, correspondence_loss, flow_loss, motion_loss, segment_loss, support_loss,
+};
+use crate::network::PartNet;
+use crate::sampling::SamplingError;
+
+/// Weight of the support loss `L_e` (the paper's λ_e); every other weight is 1.
+pub const SUPPORT_WEIGHT: f32 = 0.5;
+
+/// The value of every loss term of a step (absent when the stage does not use it).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct LossTerms {
+    /// `L_a + L_b`: matching cross-entropy and mask BCE.
+    pub correspondence: Option<f32>,
+    /// Flow L2 on visible points.
+    pub flow: Option<f32>,
+    /// Rigid-motion loss of the hypotheses.
+    pub motion: Option<f32>,
+    /// Support BCE `L_e` (unweighted).
+    pub support: Option<f32>,
+    /// Segment loss `L_f`, as `Σ (1 - IoU)` per pair.
+    pub segment: Option<f32>,
+    /// Continuation BCE `L_g`.
+    pub continuation: Option<f32>,
+}
+
+/// Column names of [`LossTerms::values`], in order.
+pub const TERM_NAMES: [&str; 6] =
+    ["correspondence", "flow", "motion", "support", "segment", "continuation"];
+
+impl LossTerms {
+    /// The terms in [`TERM_NAMES`] order.
+    pub fn values(&self) -> [Option<f32>; 6] {
+        [self.correspondence, self.flow, self.motion, self.support, self.segment, self.continuation]
+    }
+}
+
+/// Accumulates weighted terms into a total and records their values.
+struct Sum {
+    total: Option<Tensor<1>>,
+    terms: LossTerms,
+}
+
+impl Sum {
+    fn add(&mut self, loss: Tensor<1>, weight: f32, slot: fn(&mut LossTerms) -> &mut Option<f32>) {
+        *slot(&mut self.terms) = Some(loss.clone().into_scalar::<f32>());
+        let weighted = loss * weight;
+        self.total = Some(match self.total.take() {
+            Some(t) => t + weighted,
+            None => weighted,
+        });
+    }
+}
+
+/// The stage's total loss (for `backward`) and its terms; `end_to_end` lets stage 3's
+/// segmentation losses reach the flow and correspondence modules.
+pub fn stage_loss(
+    net: &PartNet,
+    batch: &TrainingBatch,
+    stage: u8,
+    end_to_end: bool,
+) -> Result<(Tensor<1>, LossTerms), SamplingError> {
+    let truth = &batch.truth;
+    let mut sum = Sum { total: None, terms: LossTerms::default() };
+    let flow = if stage == 2 {
+        truth.flow.clone()
+    } else {
+        let out = net.flow(batch.p.clone(), batch.q.clone())?;
+        let c = out.correspondence;
+        let corr = correspondence_loss(
+            c.logits,
+            truth.targets.clone(),
+            truth.matched.clone(),
+            c.mask_logits,
+            truth.visible.clone(),
+        );
+        sum.add(corr, 1.0, |t| &mut t.correspondence);
+        sum.add(flow_loss(out.flow.clone(), truth.flow.clone(), truth.visible.clone()), 1.0, |t| {
+            &mut t.flow
+        });
+        if stage == 1 {
+            return Ok((sum.total.expect("two terms"), sum.terms));
+        }
+        if end_to_end {
+            out.flow
+        } else {
+            out.flow.detach()
+        }
+    };
+    let steps =
+        if stage == 3 { truth.parts_per_pair.iter().copied().max().unwrap_or(1) + 2 } else { 0 };
+    let seg = net.segment(batch.p.clone(), flow, steps)?;
+    let [b, _, _] = batch.p.dims();
+    let s = net.seg_points();
+    let p_s = batch.p.clone().slice([0..b, 0..s]);
+    let q_s = p_s.clone() + truth.flow.clone().slice([0..b, 0..s]);
+    let visible_s = truth.visible.clone().slice([0..b, 0..s]);
+    let motion = motion_loss(
+        seg.hypotheses.rotations,
+        seg.hypotheses.translations,
+        p_s,
+        q_s,
+        truth.parts.clone(),
+        visible_s,
+    );
+    sum.add(motion, 1.0, |t| &mut t.motion);
+    sum.add(support_loss(seg.support_logits, truth.parts.clone()), SUPPORT_WEIGHT, |t| {
+        &mut t.support
+    });
+    if let Some(segments) = seg.segments {
+        sum.add(segment_loss(segments.segments, truth.parts.clone()), 1.0, |t| &mut t.segment);
+        sum.add(continuation_loss(segments.continuation, &truth.parts_per_pair), 1.0, |t| {
+            &mut t.continuation
+        });
+    }
+    Ok((sum.total.expect("at least two terms"), sum.terms))
+}

@@ -1,0 +1,157 @@
+//! One forward pass on a pair, turned into a [`Prediction`]: flow and correspondence mask
+//! interpolated from the correspondence subset to every point of P, RPEN segments until the
+//! continuation score drops below one half, hard labels by argmax, one rigid motion per
+//! segment by Kabsch on the flow, and Q labelled by its nearest moved point of P.
+//! The iterative refinement of the paper is not part of this pass.
+
+use burn::prelude::*;
+use burn::tensor::activation;
+use pairs::math::{Matrix3, Point3};
+use pairs::transform::fit_similarity_weighted;
+use pairs::{Method, MethodError, PairInput, Prediction};
+
+use crate::batch::{points_tensor, Prepared};
+use crate::network::PartNet;
+use crate::sampling::{three_nn, SamplingError};
+
+fn floats<const D: usize>(t: Tensor<D>) -> Vec<f32> {
+    t.into_data().convert::<f32>().try_to_vec().expect("float data converts to f32")
+}
+
+/// Values of `sources` (rows of `width`) interpolated onto `targets` by 3-NN weights.
+fn interpolate(
+    targets: &[[f32; 3]],
+    sources: &[[f32; 3]],
+    values: &[f32],
+    width: usize,
+) -> Result<Vec<f32>, SamplingError> {
+    let (idx, w) = three_nn(targets, sources)?;
+    let mut out = vec![0.0; targets.len() * width];
+    for (t, row) in out.chunks_mut(width).enumerate() {
+        for k in 0..3 {
+            let (i, weight) = (idx[t * 3 + k], w[t * 3 + k]);
+            for (o, v) in row.iter_mut().zip(&values[i * width..(i + 1) * width]) {
+                *o += weight * v;
+            }
+        }
+    }
+    Ok(out)
+}
+
+impl PartNet {
+    /// The network's prediction for one pair (see the module docs).
+    pub fn predict(&self, input: &PairInput) -> Result<Prediction, SamplingError> {
+        let device = self.devices().into_iter().next().unwrap_or_else(Device::flex);
+        let prep = Prepared::new(input, self.corr_points(), &Matrix3::identity())?;
+        let (p_m, q_m) = (prep.p_points(), prep.q_points());
+        let p = points_tensor(std::slice::from_ref(&p_m), &device);
+        let q = points_tensor(&[q_m], &device);
+        let out = self.flow(p.clone(), q)?;
+        let mask = floats(activation::sigmoid(out.correspondence.mask_logits));
+        let seg = self.segment(p, out.flow.clone(), self.max_segments())?;
+        let segments = seg.segments.expect("max_segments is at least 1");
+        let steps = self.max_segments();
+        let go_on = floats(segments.continuation);
+        let kept = go_on.iter().position(|&r| r < 0.0).map_or(steps, |t| t + 1);
+        let s = self.seg_points();
+        let y = floats(segments.segments.swap_dims(1, 2)); // [s, steps] row-major
+        let flow = interpolate(&prep.p, &p_m, &floats(out.flow), 3)?;
+        let corr_mask = interpolate(&prep.p, &p_m, &mask, 1)?;
+        let probs = interpolate(&prep.p, &p_m[..s], &y, steps)?;
+        let raw: Vec<usize> = probs
+            .chunks(steps)
+            .map(|row| {
+                (0..kept).max_by(|&a, &b| row[a].total_cmp(&row[b]).then(b.cmp(&a))).unwrap_or(0)
+            })
+            .collect();
+        // Segment ids in order of first appearance, so they are 0..K without gaps.
+        let mut order: Vec<usize> = Vec::new();
+        let segments_p: Vec<u32> = raw
+            .iter()
+            .map(|&r| {
+                order.iter().position(|&o| o == r).unwrap_or_else(|| {
+                    order.push(r);
+                    order.len() - 1
+                }) as u32
+            })
+            .collect();
+        let moved: Vec<Point3> = input
+            .p
+            .points
+            .iter()
+            .zip(flow.chunks(3))
+            .map(|(x, f)| Point3::new(x.x + f[0], x.y + f[1], x.z + f[2]))
+            .collect();
+        let motions = (0..order.len() as u32)
+            .map(|k| {
+                let weights: Vec<f32> =
+                    segments_p.iter().map(|&l| if l == k { 1.0 } else { 0.0 }).collect();
+                fit_similarity_weighted(&input.p.points, &moved, &weights, false)
+                    .unwrap_or_else(pairs::transform::Similarity::identity)
+            })
+            .collect::<Vec<_>>();
+        let placed: Vec<Point3> = input
+            .p
+            .points
+            .iter()
+            .zip(&segments_p)
+            .map(|(x, &l)| motions[l as usize].apply(x))
+            .collect();
+        let segments_q = input
+            .q
+            .points
+            .iter()
+            .map(|y| {
+                let nearest = placed
+                    .iter()
+                    .enumerate()
+                    .min_by(|(_, a), (_, b)| {
+                        (*a - y).norm_squared().total_cmp(&(*b - y).norm_squared())
+                    })
+                    .map_or(0, |(i, _)| i);
+                segments_p[nearest]
+            })
+            .collect();
+        let segment_probs =
+            probs.chunks(steps).map(|row| order.iter().map(|&o| row[o]).collect()).collect();
+        Ok(Prediction {
+            flow: Some(
+                flow.chunks(3).map(|f| pairs::math::Vector3::new(f[0], f[1], f[2])).collect(),
+            ),
+            segments_p,
+            segments_q,
+            motions,
+            corr_mask: Some(corr_mask),
+            segment_probs: Some(segment_probs),
+        })
+    }
+}
+
+/// The network as a [`Method`] for the evaluator: one forward pass per pair.
+#[derive(Debug)]
+pub struct NetworkMethod {
+    name: String,
+    net: std::sync::Mutex<PartNet>,
+}
+
+impl NetworkMethod {
+    /// Wraps a network (on any device) under a leaderboard name.
+    pub fn new(name: impl Into<String>, net: PartNet) -> Self {
+        Self { name: name.into(), net: std::sync::Mutex::new(net) }
+    }
+}
+
+impl Method for NetworkMethod {
+    fn name(&self) -> &str {
+        &self.name
+    }
+
+    fn predict(&self, input: &PairInput) -> Result<Prediction, MethodError> {
+        let net = self.net.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+        net.predict(input).map_err(|e| MethodError {
+            method: self.name.clone(),
+            pair: input.id.clone(),
+            source: Box::new(e),
+        })
+    }
+}

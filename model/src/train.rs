@@ -1,0 +1,353 @@
+//! Stage-wise training (the paper's "Training procedure"): pairs streamed from the generator's
+//! training split, one random rotation per pair applied to both clouds, Adam with step
+//! decay, a CSV log and loss-curve PNG under the report folder, validation on a fixed set,
+//! checkpoints every few minutes, and exact resumption from the last checkpoint.
+
+use std::path::PathBuf;
+use std::time::Instant;
+
+use burn::grad_clipping::GradientClippingConfig;
+use burn::optim::{AdamConfig, GradientsParams, ModuleOptimizer};
+use burn::prelude::*;
+use generator::config::GeneratorConfig;
+use generator::stream::TrainingStream;
+use pairs::math::{Matrix3, Rotation3, Vector3};
+use pairs::Pair;
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+
+use crate::batch::TrainingBatch;
+use crate::checkpoint::{save_weights, Best, CheckpointDir, CheckpointError, TrainState};
+use crate::config::TrainConfig;
+use crate::log::{Log, LogError, StepRow, ValidationRow};
+use crate::network::PartNet;
+use crate::objective::stage_loss;
+use crate::sampling::SamplingError;
+use crate::validation::{score, validation_pairs, ScoreError};
+
+/// Why training stopped early.
+#[derive(Debug, thiserror::Error)]
+pub enum TrainError {
+    /// A checkpoint could not be saved or restored.
+    #[error("checkpoint: {0}")]
+    Checkpoint(#[from] CheckpointError),
+    /// The log could not be written.
+    #[error("log: {0}")]
+    Log(#[from] LogError),
+    /// The training stream or validation set could not be generated.
+    #[error("generator: {0}")]
+    Generate(#[from] generator::generate::GenerateError),
+    /// A batch could not be prepared or run.
+    #[error("batch at step {step}: {source}")]
+    Batch {
+        /// The step.
+        step: u64,
+        /// What went wrong.
+        #[source]
+        source: SamplingError,
+    },
+    /// Validation failed.
+    #[error("validation: {0}")]
+    Validation(#[from] ScoreError),
+    /// The loss is not finite.
+    #[error(
+        "the loss became {value} at step {step} (stage {stage}); lower learning_rate in the config"
+    )]
+    Diverged {
+        /// The step.
+        step: u64,
+        /// The stage.
+        stage: u8,
+        /// The loss.
+        value: f32,
+    },
+    /// The checkpoint belongs to another config.
+    #[error("{dir} holds a checkpoint of a different config; pass another --checkpoints folder, or delete it to start over")]
+    ConfigMismatch {
+        /// The checkpoint folder.
+        dir: PathBuf,
+    },
+}
+
+/// Where a run writes.
+#[derive(Debug, Clone)]
+pub struct RunPaths {
+    /// Checkpoints (weights, optimiser state, position).
+    pub checkpoints: CheckpointDir,
+    /// Report folder: `log.csv`, `validation.csv`, `loss.png`.
+    pub reports: PathBuf,
+}
+
+impl RunPaths {
+    /// The default folders for a config: `checkpoints/<name>` and `reports/training/<name>`.
+    pub fn for_config(config: &TrainConfig) -> Self {
+        Self {
+            checkpoints: CheckpointDir::new(PathBuf::from("checkpoints").join(&config.name)),
+            reports: PathBuf::from("reports/training").join(&config.name),
+        }
+    }
+}
+
+/// What the caller sees after every step, for progress display.
+#[derive(Debug, Clone, Copy)]
+pub struct Progress<'a> {
+    /// The step just taken.
+    pub row: &'a StepRow,
+    /// Total pairs of the run.
+    pub total_pairs: u64,
+    /// The latest validation, if any.
+    pub validation: Option<&'a ValidationRow>,
+}
+
+/// The generator settings of the training stream: every pair from a new object, so a batch
+/// mixes objects.
+pub fn stream_config(config: &TrainConfig) -> GeneratorConfig {
+    GeneratorConfig {
+        points: config.points,
+        seed: config.seed,
+        states_per_object: 2,
+        pairs_per_object: 1,
+        ..GeneratorConfig::training()
+    }
+}
+
+/// The augmentation rotation of pair `index` of step `step`: a uniformly random axis and an
+/// angle uniform in `[0, max_deg]`.
+fn augmentation(config: &TrainConfig, step: u64, index: usize) -> Matrix3 {
+    let mut rng = ChaCha8Rng::seed_from_u64(config.seed ^ step.wrapping_mul(0x9E37_79B9_7F4A_7C15));
+    rng.set_stream(index as u64);
+    let axis = loop {
+        let v = Vector3::new(
+            rng.random_range(-1.0f32..1.0),
+            rng.random_range(-1.0f32..1.0),
+            rng.random_range(-1.0f32..1.0),
+        );
+        let n = v.norm();
+        if n > 0.1 && n <= 1.0 {
+            break v / n;
+        }
+    };
+    let angle = rng.random_range(0.0..=config.augment_rotation_deg as f32).to_radians();
+    *Rotation3::from_scaled_axis(axis * angle).matrix()
+}
+
+/// Where training pairs come from.
+enum Source {
+    /// The generator's endless training stream.
+    Stream(TrainingStream),
+    /// A fixed set, cycled in order (overfitting tests, fine-tuning on a small set).
+    Fixed(Vec<Pair>),
+}
+
+/// A training run: network, optimiser, data and logs.
+pub struct Trainer {
+    config: TrainConfig,
+    paths: RunPaths,
+    device: Device,
+    net: PartNet,
+    optimizer: ModuleOptimizer,
+    state: TrainState,
+    source: Source,
+    validation: Vec<Pair>,
+    log: Log,
+}
+
+impl std::fmt::Debug for Trainer {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Trainer")
+            .field("config", &self.config.name)
+            .field("state", &self.state)
+            .finish()
+    }
+}
+
+impl Trainer {
+    /// Starts a run on the training stream, or resumes it from the checkpoint in `paths`
+    /// (which must be of the same config). `device` is the autodiff device to train on.
+    pub fn new(config: TrainConfig, paths: RunPaths, device: Device) -> Result<Self, TrainError> {
+        Self::with_source(config, paths, device, None)
+    }
+
+    /// Like [`Trainer::new`], but cycles through `pairs` instead of the stream and validates
+    /// on them too.
+    pub fn on_pairs(
+        config: TrainConfig,
+        paths: RunPaths,
+        device: Device,
+        pairs: Vec<Pair>,
+    ) -> Result<Self, TrainError> {
+        Self::with_source(config, paths, device, Some(pairs))
+    }
+
+    fn with_source(
+        config: TrainConfig,
+        paths: RunPaths,
+        device: Device,
+        fixed: Option<Vec<Pair>>,
+    ) -> Result<Self, TrainError> {
+        let optimizer = AdamConfig::new()
+            .with_grad_clipping(Some(GradientClippingConfig::Norm(config.clip_gradient_norm)))
+            .init();
+        let (net, optimizer, state) = match paths.checkpoints.load_state()? {
+            Some(state) => {
+                if state.config != config {
+                    return Err(TrainError::ConfigMismatch {
+                        dir: paths.checkpoints.root().to_path_buf(),
+                    });
+                }
+                let (net, optimizer) =
+                    paths.checkpoints.load(&config.network, optimizer, &device)?;
+                tracing::info!(step = state.step, pairs = state.pairs, "resuming from checkpoint");
+                (net, optimizer, state)
+            }
+            None => {
+                device.seed(config.seed);
+                let net = PartNet::new(&config.network, &device);
+                let state = TrainState {
+                    config: config.clone(),
+                    step: 0,
+                    pairs: 0,
+                    next_object: 0,
+                    seconds: 0.0,
+                    best: None,
+                };
+                (net, optimizer, state)
+            }
+        };
+        let log = Log::open(&paths.reports, state.step)?;
+        let (source, validation) = match fixed {
+            Some(pairs) => (Source::Fixed(pairs.clone()), pairs),
+            None => (
+                Source::Stream(TrainingStream::starting_at(
+                    stream_config(&config),
+                    state.next_object,
+                )?),
+                validation_pairs(config.points, config.validation_pairs)?,
+            ),
+        };
+        Ok(Self { config, paths, device, net, optimizer, state, source, validation, log })
+    }
+
+    /// The network being trained.
+    pub fn network(&self) -> &PartNet {
+        &self.net
+    }
+
+    /// Where the run stands.
+    pub fn state(&self) -> &TrainState {
+        &self.state
+    }
+
+    /// Takes one optimiser step on the next batch of the stream.
+    pub fn step(&mut self) -> Result<StepRow, TrainError> {
+        let started = Instant::now();
+        let mut pairs = Vec::with_capacity(self.config.batch);
+        match &mut self.source {
+            Source::Stream(stream) => {
+                for pair in stream.by_ref().take(self.config.batch) {
+                    let pair = pair?;
+                    self.state.next_object = pair.provenance().object_id + 1;
+                    pairs.push(pair);
+                }
+            }
+            Source::Fixed(set) => {
+                let start = self.state.pairs as usize;
+                pairs.extend((0..self.config.batch).map(|i| set[(start + i) % set.len()].clone()));
+            }
+        }
+        let step = self.state.step;
+        let rotations: Vec<Matrix3> =
+            (0..pairs.len()).map(|i| augmentation(&self.config, step, i)).collect();
+        let batch = TrainingBatch::new(&pairs, &rotations, &self.config.network, &self.device)
+            .map_err(|source| TrainError::Batch { step, source })?;
+        let stage = self.config.stage_at(self.state.pairs);
+        let (loss, terms) = stage_loss(&self.net, &batch, stage, self.config.end_to_end)
+            .map_err(|source| TrainError::Batch { step, source })?;
+        let value = loss.clone().into_scalar::<f32>();
+        if !value.is_finite() {
+            return Err(TrainError::Diverged { step, stage, value });
+        }
+        let lr = self.config.learning_rate_at(self.state.pairs);
+        let grads = GradientsParams::from_grads(loss.backward(), &self.net);
+        self.net = self.optimizer.step(lr, self.net.clone(), grads);
+        self.state.step += 1;
+        self.state.pairs += pairs.len() as u64;
+        let seconds = started.elapsed().as_secs_f64();
+        self.state.seconds += seconds;
+        let row = StepRow {
+            step: self.state.step,
+            pairs: self.state.pairs,
+            stage,
+            learning_rate: lr,
+            loss: value,
+            terms,
+            seconds,
+        };
+        self.log.step(&row)?;
+        Ok(row)
+    }
+
+    /// Scores the current network on the validation set, logs it, and keeps the weights if
+    /// they are the best so far.
+    pub fn validate(&mut self) -> Result<ValidationRow, TrainError> {
+        let net = self.net.valid();
+        let scores = score(&net, &self.validation)?;
+        let stage = self.config.stage_at(self.state.pairs.saturating_sub(1));
+        let best = Best {
+            stage,
+            pairs: self.state.pairs,
+            epe: scores.epe,
+            rand_index: scores.rand_index,
+            iou: scores.iou,
+        };
+        if self.state.best.is_none_or(|b| best.beats(&b)) {
+            std::fs::create_dir_all(self.paths.checkpoints.root()).map_err(|source| {
+                CheckpointError::Io { path: self.paths.checkpoints.root().to_path_buf(), source }
+            })?;
+            save_weights(&net, &self.paths.checkpoints.best())?;
+            self.state.best = Some(best);
+        }
+        let row = ValidationRow { step: self.state.step, pairs: self.state.pairs, stage, scores };
+        self.log.validation(&row)?;
+        Ok(row)
+    }
+
+    /// Writes a checkpoint and redraws the loss curve.
+    pub fn checkpoint(&mut self) -> Result<(), TrainError> {
+        self.paths.checkpoints.save(&self.net, &self.optimizer, &self.state)?;
+        self.log.plot()?;
+        Ok(())
+    }
+
+    /// Trains until the config's last stage ends (or `max_steps` more steps), validating and
+    /// checkpointing on schedule; `progress` is called after every step.
+    pub fn run(
+        &mut self,
+        max_steps: Option<u64>,
+        mut progress: impl FnMut(Progress<'_>),
+    ) -> Result<(), TrainError> {
+        let total = self.config.total_pairs();
+        let every = self.config.validate_every_pairs;
+        let interval = std::time::Duration::from_secs_f64(self.config.checkpoint_minutes * 60.0);
+        let mut last_save = Instant::now();
+        let mut latest: Option<ValidationRow> = None;
+        let mut taken = 0;
+        while self.state.pairs < total && max_steps.is_none_or(|m| taken < m) {
+            let before = self.state.pairs;
+            let row = self.step()?;
+            taken += 1;
+            let crossed = before / every != row.pairs / every
+                || self.config.stage_at(before) != self.config.stage_at(row.pairs)
+                || row.pairs >= total;
+            if crossed {
+                latest = Some(self.validate()?);
+            }
+            if last_save.elapsed() >= interval {
+                self.checkpoint()?;
+                last_save = Instant::now();
+            }
+            progress(Progress { row: &row, total_pairs: total, validation: latest.as_ref() });
+        }
+        self.checkpoint()
+    }
+}

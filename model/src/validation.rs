@@ -1,0 +1,92 @@
+//! The fixed validation set (pairs of the validation categories) and the scores the trainer
+//! reports on it: EPE, Rand index and matched IoU (`pairs::metrics`), from the same
+//! single-pass prediction the evaluator scores.
+
+use generator::categories::Split;
+use generator::config::GeneratorConfig;
+use generator::generate::{object_pairs, GenerateError};
+use pairs::metrics::{epe, matched_iou, rand_index};
+use pairs::Pair;
+
+use crate::network::PartNet;
+use crate::sampling::SamplingError;
+
+/// Seed of the validation pairs; fixed so that every run is scored on the same pairs.
+pub const VALIDATION_SEED: u64 = 20_181_201;
+
+/// The first `count` pairs of the validation categories at `points` points per cloud.
+pub fn validation_pairs(points: u32, count: u32) -> Result<Vec<Pair>, GenerateError> {
+    let config = GeneratorConfig {
+        split: Split::Validation,
+        points,
+        seed: VALIDATION_SEED,
+        ..GeneratorConfig::default()
+    };
+    let mut pairs = Vec::with_capacity(count as usize);
+    let mut object = 0;
+    while pairs.len() < count as usize {
+        match object_pairs(&config, object) {
+            Ok(made) => pairs.extend(made.into_iter().map(|g| g.pair)),
+            Err(GenerateError::TooFewPairs { .. }) => {}
+            Err(e) => return Err(e),
+        }
+        object += 1;
+    }
+    pairs.truncate(count as usize);
+    Ok(pairs)
+}
+
+/// Mean scores over a set of pairs.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Scores {
+    /// End-point error of the flow, averaged over pairs.
+    pub epe: f64,
+    /// Rand index of P's segmentation, averaged over pairs.
+    pub rand_index: f64,
+    /// Matched IoU averaged over every ground-truth part of every pair.
+    pub iou: f64,
+}
+
+/// Why scoring failed.
+#[derive(Debug, thiserror::Error)]
+pub enum ScoreError {
+    /// The network could not run on a pair.
+    #[error("pair {pair}: {source}")]
+    Predict {
+        /// The pair's id.
+        pair: String,
+        /// What went wrong.
+        #[source]
+        source: SamplingError,
+    },
+    /// A metric rejected the prediction.
+    #[error("pair {pair}: {source}")]
+    Metric {
+        /// The pair's id.
+        pair: String,
+        /// What went wrong.
+        #[source]
+        source: pairs::metrics::MetricError,
+    },
+}
+
+/// Scores the network's single-pass predictions on `pairs`.
+pub fn score(net: &PartNet, pairs: &[Pair]) -> Result<Scores, ScoreError> {
+    let (mut epe_sum, mut ri_sum, mut iou_sum, mut parts) = (0.0, 0.0, 0.0, 0usize);
+    for pair in pairs {
+        let id = || pair.id().to_string();
+        let prediction = net
+            .predict(pair.input())
+            .map_err(|source| ScoreError::Predict { pair: id(), source })?;
+        let truth = pair.truth();
+        let metric = |source| ScoreError::Metric { pair: id(), source };
+        let flow = prediction.flow.as_deref().unwrap_or_default();
+        epe_sum += epe(flow, &truth.flow).map_err(metric)?;
+        ri_sum += rand_index(&prediction.segments_p, &truth.part_p).map_err(metric)?;
+        let matching = matched_iou(&prediction.segments_p, &truth.part_p).map_err(metric)?;
+        iou_sum += matching.iou.iter().sum::<f64>();
+        parts += matching.iou.len();
+    }
+    let n = pairs.len().max(1) as f64;
+    Ok(Scores { epe: epe_sum / n, rand_index: ri_sum / n, iou: iou_sum / parts.max(1) as f64 })
+}

