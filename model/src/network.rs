@@ -64,6 +64,18 @@ impl PartNet {
         }
     }
 
+    /// A network initialised from `seed`: the same seed gives the same weights. burn seeds
+    /// one process-wide generator and draws parameters lazily, so this holds a lock while
+    /// it seeds, builds and materialises every parameter (by taking its record).
+    pub fn seeded(config: &NetworkConfig, device: &Device, seed: u64) -> Self {
+        static INIT: std::sync::Mutex<()> = std::sync::Mutex::new(());
+        let _turn = INIT.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+        device.seed(seed);
+        let net = Self::new(config, device);
+        let record = net.clone().into_record();
+        net.load_record(record)
+    }
+
     /// Correspondences and flow on the correspondence subsets of P and Q.
     ///
     /// # Shapes

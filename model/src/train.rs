@@ -201,8 +201,7 @@ impl Trainer {
                 (net, optimizer, state)
             }
             None => {
-                device.seed(config.seed);
-                let net = PartNet::new(&config.network, &device);
+                let net = PartNet::seeded(&config.network, &device, config.seed);
                 let state = TrainState {
                     config: config.clone(),
                     step: 0,
