@@ -1,0 +1,57 @@
+//! Speed of the network on this machine: one single-pass prediction at N = 512 (the paper's
+//! target is 0.4 s on a TITAN Xp) and one training step of every stage, for the `cpu` and
+//! `paper` configs. Peak memory: run `model train` under `/usr/bin/time -v`.
+
+use burn::optim::{AdamConfig, GradientsParams};
+use burn::prelude::*;
+use criterion::{criterion_group, criterion_main, Criterion};
+use generator::config::GeneratorConfig;
+use generator::stream::TrainingStream;
+use model::batch::TrainingBatch;
+use model::config::TrainConfig;
+use model::network::PartNet;
+use model::objective::stage_loss;
+use model::train::stream_config;
+use pairs::math::Matrix3;
+
+fn bench(c: &mut Criterion) {
+    let mut group = c.benchmark_group("network");
+    group.sample_size(10);
+    for name in ["cpu", "paper"] {
+        let config = TrainConfig::built_in(name);
+        let pairs: Vec<_> =
+            TrainingStream::new(GeneratorConfig { points: 512, ..stream_config(&config) })
+                .expect("valid generator config")
+                .take(8)
+                .collect::<Result<_, _>>()
+                .expect("pairs");
+        let net = PartNet::seeded(&config.network, &Device::flex(), 1);
+        group.bench_function(format!("{name}/predict_n512"), |b| {
+            b.iter(|| net.predict(pairs[0].input()).expect("runs"))
+        });
+        let device = Device::flex().autodiff();
+        let batch_size = if name == "paper" { 2 } else { config.batch };
+        let rotations = vec![Matrix3::identity(); batch_size];
+        let batch = TrainingBatch::new(&pairs[..batch_size], &rotations, &config.network, &device)
+            .expect("a batch");
+        for stage in 1..=3u8 {
+            let mut net = PartNet::seeded(&config.network, &device, 1);
+            let mut optimizer = AdamConfig::new().init();
+            group.bench_function(
+                format!("{name}/train_step_stage{stage}_batch{batch_size}"),
+                |b| {
+                    b.iter(|| {
+                        let (loss, _) =
+                            stage_loss(&net, &batch, stage, config.end_to_end).expect("a loss");
+                        let grads = GradientsParams::from_grads(loss.backward(), &net);
+                        net = optimizer.step(1e-4, net.clone(), grads);
+                    })
+                },
+            );
+        }
+    }
+    group.finish();
+}
+
+criterion_group!(benches, bench);
+criterion_main!(benches);
