@@ -7,7 +7,7 @@ use pairs::math::{Matrix3, Point3, Vector3};
 use pairs::{Pair, PairInput};
 
 use crate::config::NetworkConfig;
-use crate::sampling::{farthest_point_sampling, SamplingError};
+use crate::sampling::{distance2, farthest_point_sampling, SamplingError};
 
 /// A pair's clouds as plain points, optionally rotated, with their farthest-point subsets.
 #[derive(Debug, Clone)]
@@ -147,8 +147,4 @@ impl TrainingBatch {
         let q: Vec<_> = prepared.iter().map(Prepared::q_points).collect();
         Ok(Self { p: points_tensor(&p, device), q: points_tensor(&q, device), truth })
     }
-}
-
-fn distance2(a: &[f32; 3], b: &[f32; 3]) -> f32 {
-    (a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)
 }

@@ -9,6 +9,8 @@ use burn::prelude::*;
 use burn::store::ModuleRecord;
 use serde::{Deserialize, Serialize};
 
+use crate::files::{at, FileError};
+
 use crate::config::{NetworkConfig, TrainConfig};
 use crate::network::PartNet;
 
@@ -63,14 +65,8 @@ pub struct TrainState {
 #[derive(Debug, thiserror::Error)]
 pub enum CheckpointError {
     /// File system error.
-    #[error("{path}: {source}")]
-    Io {
-        /// The file.
-        path: PathBuf,
-        /// The error.
-        #[source]
-        source: std::io::Error,
-    },
+    #[error(transparent)]
+    Io(#[from] FileError),
     /// burn could not write or read a record.
     #[error("{path}: {message}")]
     Record {
@@ -91,7 +87,7 @@ pub enum CheckpointError {
 }
 
 fn io(path: &Path) -> impl FnOnce(std::io::Error) -> CheckpointError + '_ {
-    move |source| CheckpointError::Io { path: path.to_path_buf(), source }
+    move |e| at(path)(e).into()
 }
 
 fn record(path: &Path) -> impl FnOnce(burn::store::RecordError) -> CheckpointError + '_ {

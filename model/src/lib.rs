@@ -28,6 +28,7 @@ pub mod batch;
 pub mod checkpoint;
 pub mod config;
 pub mod correspondence;
+pub mod files;
 pub mod flow;
 pub mod hypotheses;
 pub mod log;

@@ -6,6 +6,7 @@ use std::fs::File;
 use std::io::{BufRead, BufReader, BufWriter, Write};
 use std::path::{Path, PathBuf};
 
+use crate::files::{at, FileError};
 use crate::objective::{LossTerms, TERM_NAMES};
 use crate::plot::{draw_loss_curves, Curves};
 use crate::validation::Scores;
@@ -46,14 +47,8 @@ pub struct ValidationRow {
 #[derive(Debug, thiserror::Error)]
 pub enum LogError {
     /// File system error.
-    #[error("{path}: {source}")]
-    Io {
-        /// The file.
-        path: PathBuf,
-        /// The error.
-        #[source]
-        source: std::io::Error,
-    },
+    #[error(transparent)]
+    Io(#[from] FileError),
     /// The plot could not be drawn.
     #[error("{path}: {message}")]
     Plot {
@@ -65,7 +60,7 @@ pub enum LogError {
 }
 
 fn io(path: &Path) -> impl FnOnce(std::io::Error) -> LogError + '_ {
-    move |source| LogError::Io { path: path.to_path_buf(), source }
+    move |e| at(path)(e).into()
 }
 
 const STEP_HEADER: &str = "step,pairs,stage,learning_rate,loss";

@@ -23,7 +23,8 @@ pub enum SamplingError {
     NotFinite(usize),
 }
 
-fn distance2(a: &[f32; 3], b: &[f32; 3]) -> f32 {
+/// Squared Euclidean distance of two points.
+pub(crate) fn distance2(a: &[f32; 3], b: &[f32; 3]) -> f32 {
     (a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)
 }
 

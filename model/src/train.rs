@@ -300,9 +300,10 @@ impl Trainer {
             iou: scores.iou,
         };
         if self.state.best.is_none_or(|b| best.beats(&b)) {
-            std::fs::create_dir_all(self.paths.checkpoints.root()).map_err(|source| {
-                CheckpointError::Io { path: self.paths.checkpoints.root().to_path_buf(), source }
-            })?;
+            let root = self.paths.checkpoints.root();
+            std::fs::create_dir_all(root)
+                .map_err(crate::files::at(root))
+                .map_err(CheckpointError::from)?;
             save_weights(&net, &self.paths.checkpoints.best())?;
             self.state.best = Some(best);
         }
