@@ -1,13 +1,13 @@
 //! One forward pass on a pair, turned into a [`Prediction`]: flow and correspondence mask
 //! interpolated from the correspondence subset to every point of P, RPEN segments until the
 //! continuation score drops below one half, hard labels by argmax, one rigid motion per
-//! segment by Kabsch on the flow, and Q labelled by its nearest moved point of P.
+//! segment fitted to the flow (`pairs::segments`), and Q labelled by its nearest moved point of P.
 //! The iterative refinement of the paper is not part of this pass.
 
 use burn::prelude::*;
 use burn::tensor::activation;
-use pairs::math::{Matrix3, Point3};
-use pairs::transform::fit_similarity_weighted;
+use pairs::math::{Matrix3, Vector3};
+use pairs::segments::{compact_labels, fit_segment_motions, transfer_labels};
 use pairs::{Method, MethodError, PairInput, Prediction};
 
 use crate::batch::{points_tensor, Prepared};
@@ -64,60 +64,20 @@ impl PartNet {
                 (0..kept).max_by(|&a, &b| row[a].total_cmp(&row[b]).then(b.cmp(&a))).unwrap_or(0)
             })
             .collect();
-        // Segment ids in order of first appearance, so they are 0..K without gaps.
+        let segments_p = compact_labels(&raw);
         let mut order: Vec<usize> = Vec::new();
-        let segments_p: Vec<u32> = raw
-            .iter()
-            .map(|&r| {
-                order.iter().position(|&o| o == r).unwrap_or_else(|| {
-                    order.push(r);
-                    order.len() - 1
-                }) as u32
-            })
-            .collect();
-        let moved: Vec<Point3> = input
-            .p
-            .points
-            .iter()
-            .zip(flow.chunks(3))
-            .map(|(x, f)| Point3::new(x.x + f[0], x.y + f[1], x.z + f[2]))
-            .collect();
-        let motions = (0..order.len() as u32)
-            .map(|k| {
-                let weights: Vec<f32> =
-                    segments_p.iter().map(|&l| if l == k { 1.0 } else { 0.0 }).collect();
-                fit_similarity_weighted(&input.p.points, &moved, &weights, false)
-                    .unwrap_or_else(pairs::transform::Similarity::identity)
-            })
-            .collect::<Vec<_>>();
-        let placed: Vec<Point3> = input
-            .p
-            .points
-            .iter()
-            .zip(&segments_p)
-            .map(|(x, &l)| motions[l as usize].apply(x))
-            .collect();
-        let segments_q = input
-            .q
-            .points
-            .iter()
-            .map(|y| {
-                let nearest = placed
-                    .iter()
-                    .enumerate()
-                    .min_by(|(_, a), (_, b)| {
-                        (*a - y).norm_squared().total_cmp(&(*b - y).norm_squared())
-                    })
-                    .map_or(0, |(i, _)| i);
-                segments_p[nearest]
-            })
-            .collect();
+        for &r in &raw {
+            if !order.contains(&r) {
+                order.push(r);
+            }
+        }
+        let flow: Vec<Vector3> = flow.chunks(3).map(|f| Vector3::new(f[0], f[1], f[2])).collect();
+        let motions = fit_segment_motions(&input.p.points, &flow, &segments_p);
+        let segments_q = transfer_labels(&input.p.points, &segments_p, &motions, &input.q.points);
         let segment_probs =
             probs.chunks(steps).map(|row| order.iter().map(|&o| row[o]).collect()).collect();
         Ok(Prediction {
-            flow: Some(
-                flow.chunks(3).map(|f| pairs::math::Vector3::new(f[0], f[1], f[2])).collect(),
-            ),
+            flow: Some(flow),
             segments_p,
             segments_q,
             motions,
@@ -148,10 +108,6 @@ impl Method for NetworkMethod {
 
     fn predict(&self, input: &PairInput) -> Result<Prediction, MethodError> {
         let net = self.net.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
-        net.predict(input).map_err(|e| MethodError {
-            method: self.name.clone(),
-            pair: input.id.clone(),
-            source: Box::new(e),
-        })
+        net.predict(input).map_err(|e| MethodError::new(&self.name, &input.id, e))
     }
 }

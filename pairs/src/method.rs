@@ -35,6 +35,17 @@ pub struct MethodError {
     pub source: Box<dyn std::error::Error + Send + Sync>,
 }
 
+impl MethodError {
+    /// Wraps a method's own error with the method's name and the pair's id.
+    pub fn new(
+        method: &str,
+        pair: &str,
+        source: impl Into<Box<dyn std::error::Error + Send + Sync>>,
+    ) -> Self {
+        Self { method: method.to_owned(), pair: pair.to_owned(), source: source.into() }
+    }
+}
+
 /// A part-induction method: segments, flow and motions from a pair without its ground truth.
 pub trait Method: Send + Sync {
     /// Short stable name used in leaderboards.
@@ -42,4 +53,15 @@ pub trait Method: Send + Sync {
 
     /// Predicts segments, flow and motions for one pair.
     fn predict(&self, input: &PairInput) -> Result<Prediction, MethodError>;
+}
+
+/// A segmenter over a given flow: segments P (and Q) from P, Q and a flow on P, so one
+/// segmentation algorithm can run on any flow source (ground truth, the network's, a flow
+/// baseline's). The evaluator combines segmenters with flow sources by name.
+pub trait Segmenter: Send + Sync {
+    /// Short stable name used in leaderboards (without the flow source).
+    fn name(&self) -> &str;
+
+    /// Segments the pair given `flow` on P (Q's normalised units, one vector per point of P).
+    fn segment(&self, input: &PairInput, flow: &[Vector3]) -> Result<Prediction, MethodError>;
 }
