@@ -66,7 +66,7 @@ pub fn render_category(category: &Category, seed: u64) -> RgbImage {
     let object = (category.build)(&mut rng_for(seed, 0, Stream::Object));
     let samples =
         SurfaceSampler::new(&object).sample(&object, POINTS, &mut rng_for(seed, 0, Stream::States));
-    let view = Rotation3::from_euler_angles(0.45, -0.6, 0.0);
+    let view = view();
     let states = closed_and_open(&object);
     let views: Vec<Vec<(Point3, usize)>> = states
         .iter()
@@ -75,25 +75,53 @@ pub fn render_category(category: &Category, seed: u64) -> RgbImage {
             samples.iter().map(|s| (view * s.posed(&poses), s.link)).collect()
         })
         .collect();
-    let all = views.iter().flatten().map(|(p, _)| p);
-    let (mut lo, mut hi) = (Point3::from([Real::MAX; 3]), Point3::from([Real::MIN; 3]));
-    for p in all {
-        lo = lo.inf(p);
-        hi = hi.sup(p);
-    }
+    let bounds = bounding_box(views.iter().flatten().map(|(p, _)| p));
     let mut image = RgbImage::from_pixel(2 * PANEL, PANEL, Rgb([255, 255, 255]));
     for (panel, points) in views.iter().enumerate() {
-        draw_panel(&mut image, panel as u32 * PANEL, points, (lo, hi));
+        draw_panel(&mut image, panel as u32 * PANEL, points, bounds, SPLAT);
     }
     image
 }
 
+/// One `PANEL`-sized picture of `points` from the gallery's viewpoint, coloured by `labels`
+/// with the datasets' part palette (a segmentation of a pair's cloud, for example), drawn
+/// with splats of radius `splat` pixels.
+pub fn render_labelled(points: &[Point3], labels: &[u32], splat: i32) -> RgbImage {
+    let viewed: Vec<(Point3, usize)> =
+        points.iter().zip(labels).map(|(p, &l)| (view() * p, l as usize)).collect();
+    let bounds = bounding_box(viewed.iter().map(|(p, _)| p));
+    let mut image = RgbImage::from_pixel(PANEL, PANEL, Rgb([255, 255, 255]));
+    draw_panel(&mut image, 0, &viewed, bounds, splat);
+    image
+}
+
+/// The gallery's viewpoint: from the front, right and above.
+fn view() -> Rotation3 {
+    Rotation3::from_euler_angles(0.45, -0.6, 0.0)
+}
+
+/// The axis-aligned box of `points`.
+fn bounding_box<'a>(points: impl Iterator<Item = &'a Point3>) -> (Point3, Point3) {
+    let (mut lo, mut hi) = (Point3::from([Real::MAX; 3]), Point3::from([Real::MIN; 3]));
+    for p in points {
+        lo = lo.inf(p);
+        hi = hi.sup(p);
+    }
+    (lo, hi)
+}
+
 /// Splats `points` (view frame, with their link) into the panel at column `x0`, far points
 /// first, shading nearer points lighter; `bounds` maps the view box onto the panel.
-fn draw_panel(image: &mut RgbImage, x0: u32, points: &[(Point3, usize)], bounds: (Point3, Point3)) {
+fn draw_panel(
+    image: &mut RgbImage,
+    x0: u32,
+    points: &[(Point3, usize)],
+    bounds: (Point3, Point3),
+    splat: i32,
+) {
     let (lo, hi) = bounds;
     let extent = (hi.x - lo.x).max(hi.y - lo.y).max(1e-6);
-    let scale = (PANEL as Real - 4.0 * SPLAT as Real - 8.0) / extent;
+    let scale = (PANEL as Real - 4.0 * splat as Real - 8.0) / extent;
     let centre = nalgebra::center(&lo, &hi);
     let depth = (hi.z - lo.z).max(1e-6);
     let mut order: Vec<&(Point3, usize)> = points.iter().collect();
@@ -105,12 +133,12 @@ fn draw_panel(image: &mut RgbImage, x0: u32, points: &[(Point3, usize)], bounds:
         let shade = 0.55 + 0.45 * (p.z - lo.z) / depth;
         // The palette of the datasets' Foxglove channels, so a link looks the same in both.
         let colour = Rgb(part_colour((link % 256) as u8).map(|c| (c as Real * shade) as u8));
-        for dy in -SPLAT..=SPLAT {
-            for dx in -SPLAT..=SPLAT {
+        for dy in -splat..=splat {
+            for dx in -splat..=splat {
                 let (x, y) = (px + dx, py + dy);
                 let inside =
                     x >= x0 as i32 && x < (x0 + PANEL) as i32 && (0..PANEL as i32).contains(&y);
-                if inside && dx * dx + dy * dy <= SPLAT * SPLAT {
+                if inside && dx * dx + dy * dy <= splat * splat {
                     image.put_pixel(x as u32, y as u32, colour);
                 }
             }

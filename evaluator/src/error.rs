@@ -1,0 +1,79 @@
+//! The evaluator's errors: each names the file, dataset or method it is about.
+
+use std::path::PathBuf;
+
+/// Why an evaluation step failed.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum EvalError {
+    /// Reading or writing a file failed.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file or folder.
+        path: PathBuf,
+        /// The I/O error.
+        #[source]
+        source: std::io::Error,
+    },
+    /// A CSV or JSON file is malformed or could not be written.
+    #[error("{path}: {message}")]
+    Csv {
+        /// The file.
+        path: PathBuf,
+        /// What is wrong.
+        message: String,
+    },
+    /// A dataset could not be read.
+    #[error("dataset {name}: {source}")]
+    Dataset {
+        /// The dataset's name.
+        name: String,
+        /// The reader's error.
+        #[source]
+        source: pairs::DatasetError,
+    },
+    /// A dataset could not be generated.
+    #[error("dataset {name}: generating it failed: {source}")]
+    Generate {
+        /// The dataset's name.
+        name: String,
+        /// The generator's error.
+        #[source]
+        source: Box<generator::generate::GenerateError>,
+    },
+    /// A method, dataset or flow source name is not registered.
+    #[error("unknown {what} {name:?}; known: {known}")]
+    Unknown {
+        /// `method`, `dataset` or `flow source`.
+        what: &'static str,
+        /// The name asked for.
+        name: String,
+        /// The registered names, comma-separated.
+        known: String,
+    },
+    /// A table could not be built or written.
+    #[error("{what}: {source}")]
+    Table {
+        /// Which table.
+        what: String,
+        /// polars' error.
+        #[source]
+        source: polars::error::PolarsError,
+    },
+    /// A plot or picture could not be drawn.
+    #[error("{path}: {message}")]
+    Plot {
+        /// The picture's file.
+        path: PathBuf,
+        /// What went wrong.
+        message: String,
+    },
+    /// The network's weights could not be loaded.
+    #[error("network weights {path}: {message}")]
+    Weights {
+        /// The weights file.
+        path: PathBuf,
+        /// What went wrong.
+        message: String,
+    },
+}

@@ -1,0 +1,272 @@
+//! The leaderboards (polars): per-pair results of every row on every dataset, gathered in one
+//! DataFrame, summed per (dataset, method, flow source) and turned into
+//! `leaderboard_flow.csv`, `leaderboard_seg.csv` and `timings.csv`. Means follow
+//! docs/METRICS.md: EPE, PCC and RI average over scored pairs, IoU over all ground-truth
+//! parts, motion errors over all matched parts. Failed pairs are left out of the means and
+//! counted in `failed`.
+
+use std::path::Path;
+
+use pairs::metrics::{PCC_STEP, PCC_THRESHOLDS};
+use polars::prelude::*;
+
+use crate::error::EvalError;
+use crate::record::{pcc_column, RunTable};
+use crate::registry::{Board, Entry};
+use crate::run::RunResult;
+
+/// One row's run on one dataset, as the leaderboards read it.
+pub struct Scored<'a> {
+    /// The dataset's name.
+    pub dataset: &'a str,
+    /// The row.
+    pub entry: &'a Entry,
+    /// Its results.
+    pub result: &'a RunResult,
+}
+
+/// Leaderboard tables, ready to write.
+pub struct Leaderboards {
+    /// Flow accuracy per (dataset, method, flow source).
+    pub flow: DataFrame,
+    /// Segmentation accuracy per (dataset, method, flow source).
+    pub seg: DataFrame,
+    /// Milliseconds per pair and peak memory per (dataset, row).
+    pub timings: DataFrame,
+    /// The mean PCC curve of every row of the flow leaderboard.
+    pub curves: Vec<PccCurve>,
+}
+
+/// A row's mean PCC curve on a dataset (thresholds `0, 0.005, ..., 0.25`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct PccCurve {
+    /// The dataset's name.
+    pub dataset: String,
+    /// The row's name.
+    pub method: String,
+    /// Mean fraction of points under each threshold.
+    pub values: Vec<f64>,
+}
+
+fn table_err(what: &str) -> impl Fn(PolarsError) -> EvalError + '_ {
+    move |source| EvalError::Table { what: what.to_owned(), source }
+}
+
+/// Per-pair cells of `table` in column `name` as numbers (empty cells are missing).
+fn numbers(table: &RunTable, name: &str) -> Vec<Option<f64>> {
+    let i = table.header.iter().position(|h| h == name);
+    table.rows.iter().map(|r| i.and_then(|i| r[i].parse().ok())).collect()
+}
+
+/// Numeric per-pair columns summed by the leaderboards.
+const SUMMED: [&str; 13] = [
+    "epe",
+    "ri",
+    "iou_sum",
+    "parts",
+    "ri_q",
+    "iou_q_sum",
+    "matched",
+    "rotation_sum",
+    "translation_sum",
+    "has_flow",
+    "failed",
+    "scored",
+    "parts_right",
+];
+
+/// The per-pair frame of the runs that `keep` selects.
+fn pairs_frame(runs: &[Scored], keep: impl Fn(Board) -> bool) -> Result<DataFrame, EvalError> {
+    let runs: Vec<&Scored> = runs.iter().filter(|r| keep(r.entry.board)).collect();
+    let mut keys: [Vec<String>; 3] = Default::default();
+    let mut columns: Vec<Vec<Option<f64>>> = vec![Vec::new(); SUMMED.len() + 2 + PCC_THRESHOLDS];
+    for run in runs {
+        let table = &run.result.table;
+        let n = table.rows.len();
+        keys[0].extend(std::iter::repeat_n(run.dataset.to_owned(), n));
+        keys[1].extend(std::iter::repeat_n(run.entry.name.clone(), n));
+        keys[2].extend(std::iter::repeat_n(run.entry.flow_source(), n));
+        let failed: Vec<bool> = table.rows.iter().map(|r| !r[2].is_empty()).collect();
+        let parts = numbers(table, "parts");
+        let segments = numbers(table, "segments");
+        let has_q: Vec<Option<f64>> =
+            numbers(table, "ri_q").iter().map(|v| v.map(|_| 1.0)).collect();
+        for (c, name) in SUMMED.iter().enumerate() {
+            let values = match *name {
+                "failed" => failed.iter().map(|&f| Some(f64::from(u8::from(f)))).collect(),
+                "scored" => failed.iter().map(|&f| Some(f64::from(u8::from(!f)))).collect(),
+                "parts_right" => parts
+                    .iter()
+                    .zip(&segments)
+                    .map(|(p, s)| p.zip(*s).map(|(p, s)| f64::from(u8::from(p == s))))
+                    .collect(),
+                other => numbers(table, other),
+            };
+            columns[c].extend(values);
+        }
+        columns[SUMMED.len()].extend(has_q.iter().copied());
+        columns[SUMMED.len() + 1].extend(has_q.iter().zip(&parts).map(|(q, p)| q.and(*p)));
+        for k in 0..PCC_THRESHOLDS {
+            columns[SUMMED.len() + 2 + k].extend(numbers(table, &pcc_column(k)));
+        }
+    }
+    let names = SUMMED
+        .iter()
+        .map(|s| s.to_string())
+        .chain(["has_q".to_string(), "parts_q".to_string()])
+        .chain((0..PCC_THRESHOLDS).map(pcc_column));
+    let mut frame: Vec<Column> = ["dataset", "method", "flow_source"]
+        .iter()
+        .zip(keys)
+        .map(|(name, values)| Column::new((*name).into(), values))
+        .collect();
+    frame.extend(names.zip(columns).map(|(name, values)| Column::new(name.into(), values)));
+    DataFrame::new_infer_height(frame).map_err(table_err("per-pair results"))
+}
+
+/// Sums every numeric column per (dataset, method, flow source), in first-seen order.
+#[allow(deprecated)] // The eager aggregations: polars' lazy engine would double the build.
+fn summed(frame: &DataFrame) -> Result<DataFrame, EvalError> {
+    let numeric: Vec<String> =
+        frame.get_column_names().iter().skip(3).map(|s| s.to_string()).collect();
+    frame
+        .group_by_stable(["dataset", "method", "flow_source"])
+        .and_then(|g| g.select(numeric).sum())
+        .map_err(table_err("leaderboard sums"))
+}
+
+fn column(frame: &DataFrame, name: &str) -> Result<Vec<f64>, EvalError> {
+    let col = frame.column(&format!("{name}_sum")).map_err(table_err(name))?;
+    let values = col.f64().map_err(table_err(name))?;
+    Ok(values.iter().map(|v| v.unwrap_or(0.0)).collect())
+}
+
+fn ratio(num: &[f64], den: &[f64]) -> Vec<Option<f64>> {
+    num.iter().zip(den).map(|(n, d)| (*d > 0.0).then(|| n / d)).collect()
+}
+
+fn keys(frame: &DataFrame) -> Result<Vec<Column>, EvalError> {
+    ["dataset", "method", "flow_source"]
+        .iter()
+        .map(|k| frame.column(k).cloned().map_err(table_err(k)))
+        .collect()
+}
+
+fn counts(name: &str, values: &[f64]) -> Column {
+    Column::new(name.into(), values.iter().map(|&v| v.round() as u32).collect::<Vec<_>>())
+}
+
+fn strings(frame: &DataFrame, name: &str) -> Result<Vec<String>, EvalError> {
+    let col = frame.column(name).map_err(table_err(name))?;
+    let values = col.str().map_err(table_err(name))?;
+    Ok(values.iter().map(|v| v.unwrap_or_default().to_owned()).collect())
+}
+
+/// The flow leaderboard and its PCC curves from summed per-pair results.
+fn flow_board(sums: &DataFrame) -> Result<(DataFrame, Vec<PccCurve>), EvalError> {
+    let pairs = column(sums, "has_flow")?;
+    let curve: Vec<Vec<Option<f64>>> = (0..PCC_THRESHOLDS)
+        .map(|k| column(sums, &pcc_column(k)).map(|c| ratio(&c, &pairs)))
+        .collect::<Result<_, _>>()?;
+    let at = |t: f64| curve[(t / PCC_STEP).round() as usize].clone();
+    let auc: Vec<Option<f64>> = (0..pairs.len())
+        .map(|row| {
+            let values: Option<Vec<f64>> = curve.iter().map(|c| c[row]).collect();
+            values.map(|v| {
+                v.windows(2).map(|w| 0.5 * (w[0] + w[1])).sum::<f64>() / (PCC_THRESHOLDS - 1) as f64
+            })
+        })
+        .collect();
+    let (datasets, methods) = (strings(sums, "dataset")?, strings(sums, "method")?);
+    let curves = (0..pairs.len())
+        .filter_map(|row| {
+            let values: Option<Vec<f64>> = curve.iter().map(|c| c[row]).collect();
+            let (dataset, method) = (datasets[row].clone(), methods[row].clone());
+            values.map(|values| PccCurve { dataset, method, values })
+        })
+        .collect();
+    let mut columns = keys(sums)?;
+    columns.extend([
+        Column::new("epe".into(), ratio(&column(sums, "epe")?, &pairs)),
+        Column::new("pcc_0.05".into(), at(0.05)),
+        Column::new("pcc_0.10".into(), at(0.10)),
+        Column::new("pcc_auc".into(), auc),
+        counts("pairs", &pairs),
+        counts("failed", &column(sums, "failed")?),
+    ]);
+    let frame = DataFrame::new_infer_height(columns).map_err(table_err("flow leaderboard"))?;
+    Ok((frame, curves))
+}
+
+/// The segmentation leaderboard from summed per-pair results.
+fn seg_board(sums: &DataFrame) -> Result<DataFrame, EvalError> {
+    let scored = column(sums, "scored")?;
+    let matched = column(sums, "matched")?;
+    let mut columns = keys(sums)?;
+    columns.extend([
+        Column::new("ri".into(), ratio(&column(sums, "ri")?, &scored)),
+        Column::new("iou".into(), ratio(&column(sums, "iou_sum")?, &column(sums, "parts")?)),
+        Column::new("rotation_deg".into(), ratio(&column(sums, "rotation_sum")?, &matched)),
+        Column::new("translation".into(), ratio(&column(sums, "translation_sum")?, &matched)),
+        Column::new("part_count_acc".into(), ratio(&column(sums, "parts_right")?, &scored)),
+        Column::new("ri_q".into(), ratio(&column(sums, "ri_q")?, &column(sums, "has_q")?)),
+        Column::new("iou_q".into(), ratio(&column(sums, "iou_q_sum")?, &column(sums, "parts_q")?)),
+        counts("pairs", &scored),
+        counts("failed", &column(sums, "failed")?),
+    ]);
+    DataFrame::new_infer_height(columns).map_err(table_err("segmentation leaderboard"))
+}
+
+/// Milliseconds per pair (mean over all pairs, failed ones included) and peak memory.
+fn timings(runs: &[Scored]) -> Result<DataFrame, EvalError> {
+    let mut cols: [Vec<String>; 2] = Default::default();
+    let (mut ms, mut peak) = (Vec::new(), Vec::new());
+    for run in runs {
+        cols[0].push(run.dataset.to_owned());
+        cols[1].push(run.entry.name.clone());
+        let times: Vec<f64> = numbers(&run.result.table, "ms").into_iter().flatten().collect();
+        ms.push((!times.is_empty()).then(|| times.iter().sum::<f64>() / times.len() as f64));
+        peak.push(run.result.meta.peak_mib);
+    }
+    let [dataset, method] = cols;
+    DataFrame::new_infer_height(vec![
+        Column::new("dataset".into(), dataset),
+        Column::new("method".into(), method),
+        Column::new("ms_per_pair".into(), ms),
+        Column::new("peak_mib".into(), peak),
+    ])
+    .map_err(table_err("timings"))
+}
+
+impl Leaderboards {
+    /// Builds the three tables from every run.
+    pub fn build(runs: &[Scored]) -> Result<Self, EvalError> {
+        let flow = summed(&pairs_frame(runs, |b| b != Board::Segmentation)?)?;
+        let seg = summed(&pairs_frame(runs, |b| b != Board::Flow)?)?;
+        let (flow, curves) = flow_board(&flow)?;
+        Ok(Self { flow, seg: seg_board(&seg)?, timings: timings(runs)?, curves })
+    }
+
+    /// Writes `leaderboard_flow.csv`, `leaderboard_seg.csv` and `timings.csv` into `dir`.
+    pub fn write(&mut self, dir: &Path) -> Result<(), EvalError> {
+        for (name, frame) in [
+            ("leaderboard_flow.csv", &mut self.flow),
+            ("leaderboard_seg.csv", &mut self.seg),
+            ("timings.csv", &mut self.timings),
+        ] {
+            write_csv(&dir.join(name), frame)?;
+        }
+        Ok(())
+    }
+}
+
+/// Writes `frame` as CSV with four decimals (fixed, so reruns are byte-identical).
+pub fn write_csv(path: &Path, frame: &mut DataFrame) -> Result<(), EvalError> {
+    let io = |source| EvalError::Io { path: path.to_path_buf(), source };
+    let mut file = std::fs::File::create(path).map_err(io)?;
+    CsvWriter::new(&mut file)
+        .include_header(true)
+        .with_float_precision(Some(4))
+        .finish(frame)
+        .map_err(|source| EvalError::Table { what: path.display().to_string(), source })
+}

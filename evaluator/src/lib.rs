@@ -1,0 +1,39 @@
+//! Every method on every dataset, scored into reproducible leaderboards.
+//!
+//! The [`registry`] names every leaderboard row: whole methods, segmenters combined with a
+//! flow source (`seqransac@net-flow`), and the `gt` oracle. [`run`] runs a row on a
+//! [`datasets`] dataset in parallel over pairs, scoring each prediction with [`score`]
+//! (`pairs::metrics`) and caching per-pair results ([`record`]). [`leaderboard`] aggregates
+//! them with polars into the CSV leaderboards; [`plots`], [`gallery`] and [`report`] draw the
+//! PCC curves and segmentation pictures and write `LEADERBOARD.md` beside the paper's
+//! numbers ([`paper`]).
+//!
+//! ```
+//! use std::sync::Arc;
+//! use evaluator::reference::OnePart;
+//! use evaluator::registry::{FlowSource, Registry};
+//!
+//! let mut registry = Registry::new();
+//! registry.oracle().combine(Arc::new(OnePart), FlowSource::GroundTruth, "v1", None);
+//! let names: Vec<&str> = registry.entries().iter().map(|e| e.name.as_str()).collect();
+//! assert_eq!(names, ["gt", "one-part@gt-flow"]);
+//! ```
+#![deny(missing_docs)]
+
+pub mod datasets;
+pub mod error;
+pub mod gallery;
+pub mod leaderboard;
+pub mod memory;
+pub mod paper;
+pub mod pipeline;
+pub mod plots;
+pub mod record;
+pub mod reference;
+pub mod registry;
+pub mod report;
+pub mod run;
+pub mod score;
+pub mod standard;
+
+pub use error::EvalError;

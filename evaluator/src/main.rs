@@ -1,0 +1,156 @@
+//! `evaluator`: every method on every dataset, scored into the leaderboards under `reports/`.
+
+use std::path::PathBuf;
+use std::sync::Mutex;
+use std::time::Instant;
+
+use anyhow::{Context, Result};
+use clap::Parser;
+use evaluator::datasets::default_datasets;
+use evaluator::pipeline::{evaluate, Options, Progress};
+use evaluator::standard::{standard_registry, DEFAULT_WEIGHTS};
+use indicatif::{ProgressBar, ProgressStyle};
+
+#[derive(Parser, Debug)]
+#[command(
+    name = "evaluator",
+    version,
+    about = "Score every part-induction method on every dataset into reports/",
+    after_help = "Examples:
+  evaluator --all                                   everything (generates missing datasets)
+  evaluator --methods gt,net --limit 50             two rows on the first 50 pairs
+  evaluator --methods seqransac@net-flow --force    recompute one row
+  evaluator --list                                  the registered rows and datasets"
+)]
+struct Args {
+    /// Every registered method on every default dataset.
+    #[arg(long)]
+    all: bool,
+    /// Only these rows (comma-separated names, see --list).
+    #[arg(long, value_delimiter = ',')]
+    methods: Vec<String>,
+    /// Only these datasets (comma-separated names, see --list).
+    #[arg(long, value_delimiter = ',')]
+    datasets: Vec<String>,
+    /// Only the first N pairs of each dataset.
+    #[arg(long, value_name = "N")]
+    limit: Option<usize>,
+    /// Recompute runs even when reports/runs holds a matching one.
+    #[arg(long)]
+    force: bool,
+    /// Folder of the datasets (each in <root>/<name>).
+    #[arg(long, default_value = "datasets")]
+    datasets_root: PathBuf,
+    /// Folder of the reports.
+    #[arg(long, default_value = "reports")]
+    reports: PathBuf,
+    /// The network's weights folder (config.toml and model.bpk).
+    #[arg(long, default_value = DEFAULT_WEIGHTS)]
+    weights: PathBuf,
+    /// Pairs per dataset in the segmentation gallery.
+    #[arg(long, default_value_t = 3)]
+    gallery_pairs: usize,
+    /// List the registered rows and datasets, then exit.
+    #[arg(long)]
+    list: bool,
+}
+
+/// indicatif bars: one for dataset generation, one per row and dataset.
+struct Bars {
+    bar: Mutex<Option<ProgressBar>>,
+}
+
+impl Bars {
+    fn new_bar(&self, total: u64, message: String) {
+        let bar = ProgressBar::new(total);
+        bar.set_style(
+            ProgressStyle::with_template("{msg:40} [{bar:30}] {pos}/{len} {elapsed}<{eta}")
+                .expect("the template is valid")
+                .progress_chars("=> "),
+        );
+        bar.set_message(message);
+        *self.bar.lock().unwrap_or_else(|e| e.into_inner()) = Some(bar);
+    }
+}
+
+impl Progress for Bars {
+    fn generating(&self, dataset: &str, done: u64, total: u64) {
+        if done <= 1 {
+            self.new_bar(total, format!("generating {dataset}"));
+        }
+        if let Some(bar) = self.bar.lock().unwrap_or_else(|e| e.into_inner()).as_ref() {
+            bar.set_position(done);
+        }
+    }
+
+    fn start(&self, entry: &str, dataset: &str, pairs: u64) {
+        self.new_bar(pairs, format!("{entry} on {dataset}"));
+    }
+
+    fn tick(&self) {
+        if let Some(bar) = self.bar.lock().unwrap_or_else(|e| e.into_inner()).as_ref() {
+            bar.inc(1);
+        }
+    }
+
+    fn finish(&self, entry: &str, dataset: &str, cached: bool) {
+        if let Some(bar) = self.bar.lock().unwrap_or_else(|e| e.into_inner()).take() {
+            bar.finish_and_clear();
+        }
+        let how = if cached { "cached" } else { "done" };
+        eprintln!("{entry} on {dataset}: {how}");
+    }
+}
+
+fn run(args: Args) -> Result<()> {
+    let registry = standard_registry(&args.weights).with_context(|| {
+        format!("building the method registry (weights {})", args.weights.display())
+    })?;
+    let specs = default_datasets();
+    if args.list {
+        println!("rows:");
+        for entry in registry.entries() {
+            println!("  {:28} flow source {}", entry.name, entry.flow_source());
+        }
+        println!("datasets:");
+        for spec in &specs {
+            println!("  {:28} {}", spec.name, spec.dir(&args.datasets_root).display());
+        }
+        return Ok(());
+    }
+    if !args.all && args.methods.is_empty() && args.datasets.is_empty() {
+        anyhow::bail!(
+            "nothing to do: pass --all, or narrow with --methods/--datasets (see --help)"
+        );
+    }
+    let options = Options {
+        datasets: args.datasets,
+        methods: args.methods,
+        limit: args.limit,
+        datasets_root: args.datasets_root,
+        reports: args.reports,
+        force: args.force,
+        gallery_pairs: args.gallery_pairs,
+    };
+    let started = Instant::now();
+    let bars = Bars { bar: Mutex::new(None) };
+    let summary = evaluate(&registry, &specs, &options, &bars)?;
+    eprintln!(
+        "{} runs ({} fresh, {} cached), {} failed pairs, {:.1} s; wrote {}/LEADERBOARD.md",
+        summary.fresh + summary.cached,
+        summary.fresh,
+        summary.cached,
+        summary.failed,
+        started.elapsed().as_secs_f64(),
+        options.reports.display()
+    );
+    Ok(())
+}
+
+fn main() {
+    tracing_subscriber::fmt().with_writer(std::io::stderr).init();
+    if let Err(err) = run(Args::parse()) {
+        eprintln!("error: {err:#}");
+        std::process::exit(1);
+    }
+}

@@ -1,0 +1,157 @@
+//! The whole evaluation: make missing datasets, load them, run every selected row on every
+//! selected dataset (reusing matching cached runs), then write the leaderboards, plots,
+//! gallery and `LEADERBOARD.md` under the reports folder.
+
+use std::path::PathBuf;
+
+use crate::datasets::{ensure_dataset, load_dataset, DatasetSpec, LoadedDataset};
+use crate::error::EvalError;
+use crate::gallery::{write_picture, GalleryPicture};
+use crate::leaderboard::{Leaderboards, Scored};
+use crate::plots::write_pcc_plots;
+use crate::registry::{Board, Entry, Registry};
+use crate::report::write_report;
+use crate::run::{run_entry, FlowCache, RunOptions, RunResult};
+
+/// What to evaluate and where.
+#[derive(Debug, Clone)]
+pub struct Options {
+    /// Datasets by name (empty: every default dataset).
+    pub datasets: Vec<String>,
+    /// Rows by name (empty: every registered row).
+    pub methods: Vec<String>,
+    /// Only the first pairs of each dataset.
+    pub limit: Option<usize>,
+    /// Folder holding the dataset folders (`datasets`).
+    pub datasets_root: PathBuf,
+    /// Folder of the reports (`reports`).
+    pub reports: PathBuf,
+    /// Recompute runs even when cached.
+    pub force: bool,
+    /// Pairs per dataset shown in the gallery (the first ones of the file).
+    pub gallery_pairs: usize,
+}
+
+/// Progress hooks for the binary's bars.
+pub trait Progress: Sync {
+    /// A dataset of `total` pairs is being generated; `done` pairs are written.
+    fn generating(&self, dataset: &str, done: u64, total: u64);
+    /// Row `entry` starts on `dataset` with `pairs` pairs.
+    fn start(&self, entry: &str, dataset: &str, pairs: u64);
+    /// One more pair is done.
+    fn tick(&self);
+    /// The row is done (`cached`: reused from the runs folder).
+    fn finish(&self, entry: &str, dataset: &str, cached: bool);
+}
+
+/// What an evaluation produced.
+pub struct Summary {
+    /// The leaderboards as written.
+    pub boards: Leaderboards,
+    /// Rows run afresh.
+    pub fresh: usize,
+    /// Rows reused from the cache.
+    pub cached: usize,
+    /// Failed pairs over all rows.
+    pub failed: usize,
+}
+
+/// Runs the evaluation described by `options` over `registry`'s rows and `specs`' datasets.
+pub fn evaluate(
+    registry: &Registry,
+    specs: &[DatasetSpec],
+    options: &Options,
+    progress: &dyn Progress,
+) -> Result<Summary, EvalError> {
+    let selected: Vec<&DatasetSpec> = if options.datasets.is_empty() {
+        specs.iter().collect()
+    } else {
+        options
+            .datasets
+            .iter()
+            .map(|name| {
+                specs.iter().find(|s| &s.name == name).ok_or_else(|| EvalError::Unknown {
+                    what: "dataset",
+                    name: name.clone(),
+                    known: specs.iter().map(|s| s.name.as_str()).collect::<Vec<_>>().join(", "),
+                })
+            })
+            .collect::<Result<_, _>>()?
+    };
+    let entries = registry.select(&options.methods)?;
+    let mut loaded: Vec<LoadedDataset> = Vec::new();
+    for spec in &selected {
+        ensure_dataset(spec, &options.datasets_root, |done, total| {
+            progress.generating(&spec.name, done, total)
+        })?;
+        loaded.push(load_dataset(&spec.name, &spec.dir(&options.datasets_root), options.limit)?);
+    }
+    let flows = FlowCache::default();
+    let mut results: Vec<(usize, usize, RunResult)> = Vec::new();
+    let (mut fresh, mut cached) = (0, 0);
+    for (d, dataset) in loaded.iter().enumerate() {
+        let run_options = RunOptions {
+            runs: options.reports.join("runs"),
+            force: options.force,
+            gallery: dataset
+                .pairs
+                .iter()
+                .take(options.gallery_pairs)
+                .map(|p| p.id().to_owned())
+                .collect(),
+        };
+        for (e, entry) in entries.iter().enumerate() {
+            progress.start(&entry.name, &dataset.name, dataset.pairs.len() as u64);
+            let result = run_entry(entry, dataset, &flows, &run_options, &|| progress.tick())?;
+            progress.finish(&entry.name, &dataset.name, result.cached);
+            if result.cached {
+                cached += 1;
+            } else {
+                fresh += 1;
+            }
+            results.push((d, e, result));
+        }
+    }
+    let scored: Vec<Scored> = results
+        .iter()
+        .map(|(d, e, result)| Scored { dataset: &loaded[*d].name, entry: &entries[*e], result })
+        .collect();
+    let failed = scored
+        .iter()
+        .map(|s| s.result.table.rows.iter().filter(|r| !r[2].is_empty()).count())
+        .sum();
+    std::fs::create_dir_all(&options.reports)
+        .map_err(|source| EvalError::Io { path: options.reports.clone(), source })?;
+    let mut boards = Leaderboards::build(&scored)?;
+    boards.write(&options.reports)?;
+    write_pcc_plots(&options.reports, &boards.curves)?;
+    let gallery = write_gallery(options, &loaded, &entries, &scored)?;
+    write_report(&options.reports, &boards, &gallery)?;
+    Ok(Summary { boards, fresh, cached, failed })
+}
+
+/// One picture per gallery pair and dataset, with a panel per segmentation row.
+fn write_gallery(
+    options: &Options,
+    loaded: &[LoadedDataset],
+    entries: &[Entry],
+    scored: &[Scored],
+) -> Result<Vec<GalleryPicture>, EvalError> {
+    let dir = options.reports.join("gallery").join("segmentation");
+    let mut pictures = Vec::new();
+    for dataset in loaded {
+        for pair in dataset.pairs.iter().take(options.gallery_pairs) {
+            let rows: Vec<(String, Vec<u32>)> = scored
+                .iter()
+                .filter(|s| s.dataset == dataset.name && s.entry.board != Board::Flow)
+                .filter(|s| entries.iter().any(|e| e.name == s.entry.name))
+                .filter_map(|s| {
+                    let segments = s.result.meta.gallery.get(pair.id())?;
+                    Some((s.entry.name.clone(), segments.clone()))
+                })
+                .collect();
+            pictures.push(write_picture(&dir, &dataset.name, pair, &rows)?);
+        }
+    }
+    Ok(pictures)
+}

@@ -1,0 +1,150 @@
+//! Per-pair results of one method on one dataset (`reports/runs/<dataset>/<method>.csv`):
+//! one row per pair with its scores, or the reason it failed, and its time.
+
+use std::path::Path;
+
+use pairs::metrics::{PCC_STEP, PCC_THRESHOLDS};
+
+use crate::error::EvalError;
+use crate::score::PairScore;
+
+/// One pair's outcome for one method.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PairRecord {
+    /// The pair's id.
+    pub pair: String,
+    /// The pair's object category.
+    pub category: String,
+    /// Milliseconds the method took on the pair (not part of the leaderboards).
+    pub ms: f64,
+    /// The scores, or why the pair failed.
+    pub outcome: Result<PairScore, String>,
+}
+
+/// Columns before the PCC curve; the curve follows as `pcc_000` .. `pcc_250` (threshold in
+/// thousandths).
+const FIXED: [&str; 16] = [
+    "pair",
+    "category",
+    "failed",
+    "ms",
+    "epe",
+    "ri",
+    "iou_sum",
+    "parts",
+    "segments",
+    "ri_q",
+    "iou_q_sum",
+    "matched",
+    "rotation_sum",
+    "translation_sum",
+    "rotation_max",
+    "has_flow",
+];
+
+/// The header of a runs file.
+pub fn header() -> Vec<String> {
+    FIXED.iter().map(|s| s.to_string()).chain((0..PCC_THRESHOLDS).map(pcc_column)).collect()
+}
+
+/// Name of the PCC column at threshold index `k`.
+pub fn pcc_column(k: usize) -> String {
+    format!("pcc_{:03}", (k as f64 * PCC_STEP * 1000.0).round() as u32)
+}
+
+fn num(v: f64) -> String {
+    // Round-trip exact (shortest representation that parses back to the same f64).
+    format!("{v:?}")
+}
+
+fn opt(v: Option<f64>) -> String {
+    v.map(num).unwrap_or_default()
+}
+
+impl PairRecord {
+    /// The record as a CSV row in [`header`] order.
+    pub fn to_row(&self) -> Vec<String> {
+        let mut row = vec![self.pair.clone(), self.category.clone()];
+        match &self.outcome {
+            Err(reason) => {
+                row.push(reason.clone());
+                row.push(num(self.ms));
+                row.resize(FIXED.len() + PCC_THRESHOLDS, String::new());
+            }
+            Ok(s) => {
+                let sum = |v: &[f64]| v.iter().sum::<f64>();
+                let max = s
+                    .rotation_deg
+                    .iter()
+                    .copied()
+                    .fold(None, |m: Option<f64>, v| Some(m.map_or(v, |m| m.max(v))));
+                row.extend([
+                    String::new(),
+                    num(self.ms),
+                    opt(s.flow.as_ref().map(|f| f.epe)),
+                    num(s.p.rand_index),
+                    num(s.p.iou_sum),
+                    s.parts.to_string(),
+                    s.segments.to_string(),
+                    opt(s.q.as_ref().map(|q| q.rand_index)),
+                    opt(s.q.as_ref().map(|q| q.iou_sum)),
+                    s.rotation_deg.len().to_string(),
+                    num(sum(&s.rotation_deg)),
+                    num(sum(&s.translation)),
+                    opt(max),
+                    u8::from(s.flow.is_some()).to_string(),
+                ]);
+                match &s.flow {
+                    Some(f) => row.extend(f.pcc.iter().map(|&v| num(v))),
+                    None => row.resize(FIXED.len() + PCC_THRESHOLDS, String::new()),
+                }
+            }
+        }
+        row
+    }
+}
+
+/// Writes `records` to `path` (atomically: a temporary file renamed into place).
+pub fn write_records(path: &Path, records: &[PairRecord]) -> Result<(), EvalError> {
+    let tmp = path.with_extension("csv.tmp");
+    let io = |source| EvalError::Io { path: tmp.clone(), source };
+    if let Some(dir) = path.parent() {
+        std::fs::create_dir_all(dir)
+            .map_err(|source| EvalError::Io { path: dir.to_path_buf(), source })?;
+    }
+    let mut writer = csv::Writer::from_path(&tmp)
+        .map_err(|e| EvalError::Csv { path: tmp.clone(), message: e.to_string() })?;
+    let csv_err = |e: csv::Error| EvalError::Csv { path: tmp.clone(), message: e.to_string() };
+    writer.write_record(header()).map_err(csv_err)?;
+    for r in records {
+        writer.write_record(r.to_row()).map_err(csv_err)?;
+    }
+    writer.flush().map_err(io)?;
+    drop(writer);
+    std::fs::rename(&tmp, path).map_err(|source| EvalError::Io { path: path.to_path_buf(), source })
+}
+
+/// A runs file read back as rows of named string cells (the leaderboard parses the numbers).
+#[derive(Debug, Clone)]
+pub struct RunTable {
+    /// Column names.
+    pub header: Vec<String>,
+    /// Rows, each as long as the header.
+    pub rows: Vec<Vec<String>>,
+}
+
+/// Reads a runs file, checking that its header is this version's.
+pub fn read_records(path: &Path) -> Result<RunTable, EvalError> {
+    let bad = |message: String| EvalError::Csv { path: path.to_path_buf(), message };
+    let mut reader = csv::Reader::from_path(path).map_err(|e| bad(e.to_string()))?;
+    let found: Vec<String> =
+        reader.headers().map_err(|e| bad(e.to_string()))?.iter().map(str::to_owned).collect();
+    if found != header() {
+        return Err(bad("the header is not this evaluator's (rerun the method)".into()));
+    }
+    let rows = reader
+        .records()
+        .map(|r| r.map(|r| r.iter().map(str::to_owned).collect()).map_err(|e| bad(e.to_string())))
+        .collect::<Result<_, _>>()?;
+    Ok(RunTable { header: found, rows })
+}

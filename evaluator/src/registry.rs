@@ -1,0 +1,168 @@
+//! The method registry: every row of the leaderboards by name. A row is a whole method
+//! (`net`, `nrr`, a flow baseline), a segmenter combined with a flow source
+//! (`seqransac@gt-flow`, `seqransac@net-flow`), or the `gt` sanity oracle. Combinations come
+//! from [`Registry::combine`], not from copied code.
+
+use std::sync::Arc;
+
+use pairs::{Method, Segmenter};
+
+use crate::error::EvalError;
+
+/// Where a segmenter's input flow comes from.
+#[derive(Clone)]
+pub enum FlowSource {
+    /// The ground-truth flow (an oracle row).
+    GroundTruth,
+    /// The flow a method predicts (`net-flow`: the network's).
+    Method(Arc<dyn Method>),
+}
+
+impl FlowSource {
+    /// The name used after `@` in row names and in the `flow_source` column.
+    pub fn name(&self) -> String {
+        match self {
+            Self::GroundTruth => "gt-flow".into(),
+            Self::Method(m) => format!("{}-flow", m.name()),
+        }
+    }
+}
+
+/// How the runner gets a prediction for a row.
+#[derive(Clone)]
+pub enum Runner {
+    /// The ground truth itself, read by the runner: the sanity row that must score EPE 0,
+    /// RI 1 and IoU 1. No [`Method`] can do this, because a method only sees the input.
+    Oracle,
+    /// A whole method on the pair.
+    Method(Arc<dyn Method>),
+    /// A segmenter on a flow source's flow.
+    Segmenter {
+        /// The segmenter.
+        segmenter: Arc<dyn Segmenter>,
+        /// Its input flow.
+        flow: FlowSource,
+    },
+}
+
+/// What a row is scored on.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Board {
+    /// Flow only (flow baselines: their single segment is not a segmentation).
+    Flow,
+    /// Segmentation only (a segmenter on someone else's flow reports no flow of its own).
+    Segmentation,
+    /// Both leaderboards.
+    Both,
+}
+
+/// One leaderboard row: a name, how to run it, and what identifies its results.
+#[derive(Clone)]
+pub struct Entry {
+    /// Row name (`seqransac@net-flow`).
+    pub name: String,
+    /// How predictions are made.
+    pub runner: Runner,
+    /// Which leaderboards list it.
+    pub board: Board,
+    /// Identifies the method's code, parameters and weights: cached results made with
+    /// another fingerprint are recomputed.
+    pub fingerprint: String,
+}
+
+impl Entry {
+    /// The `flow_source` column: `gt` for the oracle, `own` for whole methods, else the
+    /// source's name.
+    pub fn flow_source(&self) -> String {
+        match &self.runner {
+            Runner::Oracle => "gt".into(),
+            Runner::Method(_) => "own".into(),
+            Runner::Segmenter { flow, .. } => flow.name(),
+        }
+    }
+
+    /// The method column: the row name without its `@flow` suffix.
+    pub fn method(&self) -> &str {
+        self.name.split('@').next().unwrap_or(&self.name)
+    }
+}
+
+/// The ordered set of rows the evaluator can run.
+#[derive(Clone, Default)]
+pub struct Registry {
+    entries: Vec<Entry>,
+}
+
+impl Registry {
+    /// An empty registry.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Adds the `gt` oracle row.
+    pub fn oracle(&mut self) -> &mut Self {
+        let fingerprint = "gt".into();
+        self.push(Entry {
+            name: "gt".into(),
+            runner: Runner::Oracle,
+            board: Board::Both,
+            fingerprint,
+        })
+    }
+
+    /// Adds a whole method under its own name.
+    pub fn method(
+        &mut self,
+        method: Arc<dyn Method>,
+        board: Board,
+        fingerprint: &str,
+    ) -> &mut Self {
+        let name = method.name().to_owned();
+        let runner = Runner::Method(method);
+        self.push(Entry { name, runner, board, fingerprint: fingerprint.into() })
+    }
+
+    /// Adds `segmenter` on `flow` as `<segmenter>@<flow>`, or under `name` when given.
+    pub fn combine(
+        &mut self,
+        segmenter: Arc<dyn Segmenter>,
+        flow: FlowSource,
+        fingerprint: &str,
+        name: Option<&str>,
+    ) -> &mut Self {
+        let name =
+            name.map_or_else(|| format!("{}@{}", segmenter.name(), flow.name()), str::to_owned);
+        let board = if name.contains('@') { Board::Segmentation } else { Board::Both };
+        let runner = Runner::Segmenter { segmenter, flow };
+        self.push(Entry { name, runner, board, fingerprint: fingerprint.into() })
+    }
+
+    fn push(&mut self, entry: Entry) -> &mut Self {
+        self.entries.retain(|e| e.name != entry.name);
+        self.entries.push(entry);
+        self
+    }
+
+    /// Every row, in registration order.
+    pub fn entries(&self) -> &[Entry] {
+        &self.entries
+    }
+
+    /// The rows named in `names` (all rows when `names` is empty), in registration order;
+    /// an unknown name is an error listing the known ones.
+    pub fn select(&self, names: &[String]) -> Result<Vec<Entry>, EvalError> {
+        if let Some(unknown) = names.iter().find(|n| !self.entries.iter().any(|e| &e.name == *n)) {
+            return Err(EvalError::Unknown {
+                what: "method",
+                name: unknown.clone(),
+                known: self.entries.iter().map(|e| e.name.as_str()).collect::<Vec<_>>().join(", "),
+            });
+        }
+        Ok(self
+            .entries
+            .iter()
+            .filter(|e| names.is_empty() || names.contains(&e.name))
+            .cloned()
+            .collect())
+    }
+}

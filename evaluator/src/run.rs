@@ -1,0 +1,230 @@
+//! Running one leaderboard row on one dataset: predictions in parallel over pairs (each pair
+//! on its own, so results never depend on thread scheduling), every prediction checked and
+//! scored, failures recorded with their reason, and the per-pair results cached in
+//! `<runs>/<dataset>/<row>.csv` with a `.json` sidecar naming the row's fingerprint and the
+//! dataset's content hash: a run is reused only while both match.
+
+use std::collections::{BTreeMap, HashMap};
+use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex};
+use std::time::Instant;
+
+use pairs::math::Vector3;
+use pairs::{Pair, Prediction};
+use rayon::prelude::*;
+use serde::{Deserialize, Serialize};
+
+use crate::datasets::LoadedDataset;
+use crate::error::EvalError;
+use crate::memory;
+use crate::record::{read_records, write_records, PairRecord, RunTable};
+use crate::registry::{Entry, FlowSource, Runner};
+use crate::score::score_pair;
+
+/// Version of the runs files; bump it when scoring changes so cached runs are recomputed.
+pub const RUNS_VERSION: u32 = 1;
+
+/// What is stored beside a runs file.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RunMeta {
+    /// [`RUNS_VERSION`] of the evaluator that made it.
+    pub version: u32,
+    /// The row's fingerprint.
+    pub fingerprint: String,
+    /// The dataset's content hash.
+    pub dataset: String,
+    /// Peak resident memory of the evaluator while it ran, MiB (Linux only).
+    pub peak_mib: Option<f64>,
+    /// P's predicted segments on the gallery pairs, by pair id.
+    pub gallery: BTreeMap<String, Vec<u32>>,
+}
+
+/// One row's results on one dataset.
+#[derive(Debug, Clone)]
+pub struct RunResult {
+    /// The per-pair table (as written to the runs file).
+    pub table: RunTable,
+    /// The sidecar.
+    pub meta: RunMeta,
+    /// Whether it came from the cache.
+    pub cached: bool,
+}
+
+/// Per pair of a dataset, a flow source's flow or why it has none.
+type SourceFlows = Arc<Vec<Result<Vec<Vector3>, String>>>;
+
+/// Flows of flow sources, computed once per source and dataset and shared by every
+/// segmenter that runs on them.
+#[derive(Default)]
+pub struct FlowCache {
+    flows: Mutex<HashMap<(String, String), SourceFlows>>,
+}
+
+impl FlowCache {
+    fn get(&self, source: &FlowSource, dataset: &LoadedDataset) -> SourceFlows {
+        let key = (source.name(), dataset.name.clone());
+        if let Some(found) = self.flows.lock().unwrap_or_else(|e| e.into_inner()).get(&key) {
+            return found.clone();
+        }
+        let flows: Vec<Result<Vec<Vector3>, String>> = dataset
+            .pairs
+            .par_iter()
+            .map(|pair| match source {
+                FlowSource::GroundTruth => Ok(pair.truth().flow.clone()),
+                FlowSource::Method(m) => {
+                    guarded(|| m.predict(pair.input()).map_err(|e| e.to_string()))
+                        .and_then(|p| p.flow.ok_or_else(|| format!("{} reports no flow", m.name())))
+                }
+            })
+            .collect();
+        let flows = Arc::new(flows);
+        self.flows.lock().unwrap_or_else(|e| e.into_inner()).insert(key, flows.clone());
+        flows
+    }
+}
+
+/// Runs `f`, turning a panic into an error message so one pair never aborts the run.
+fn guarded<T>(f: impl FnOnce() -> Result<T, String>) -> Result<T, String> {
+    match catch_unwind(AssertUnwindSafe(f)) {
+        Ok(result) => result,
+        Err(panic) => {
+            let what = panic
+                .downcast_ref::<String>()
+                .cloned()
+                .or_else(|| panic.downcast_ref::<&str>().map(|s| s.to_string()))
+                .unwrap_or_default();
+            Err(format!("panicked: {what}"))
+        }
+    }
+}
+
+/// The prediction of `entry` for pair `index` of `dataset`.
+fn predict(
+    entry: &Entry,
+    pair: &Pair,
+    flow: Option<&Result<Vec<Vector3>, String>>,
+) -> Result<Prediction, String> {
+    match &entry.runner {
+        Runner::Oracle => {
+            let truth = pair.truth();
+            Ok(Prediction {
+                flow: Some(truth.flow.clone()),
+                segments_p: truth.part_p.iter().map(|&k| u32::from(k)).collect(),
+                segments_q: truth.part_q.iter().map(|&k| u32::from(k)).collect(),
+                motions: truth.motions.clone(),
+                corr_mask: None,
+                segment_probs: None,
+            })
+        }
+        Runner::Method(m) => guarded(|| m.predict(pair.input()).map_err(|e| e.to_string())),
+        Runner::Segmenter { segmenter, flow: source } => {
+            let flow = flow
+                .ok_or_else(|| format!("no flow from {}", source.name()))?
+                .as_ref()
+                .map_err(|e| format!("flow source {} failed: {e}", source.name()))?;
+            guarded(|| segmenter.segment(pair.input(), flow).map_err(|e| e.to_string()))
+        }
+    }
+}
+
+/// Where the runs file of `entry` on `dataset` lives under `runs`.
+pub fn runs_path(runs: &Path, dataset: &str, entry: &str) -> PathBuf {
+    runs.join(dataset).join(format!("{entry}.csv"))
+}
+
+fn read_meta(path: &Path) -> Option<RunMeta> {
+    serde_json::from_str(&std::fs::read_to_string(path).ok()?).ok()
+}
+
+/// Options of a run.
+#[derive(Debug, Clone)]
+pub struct RunOptions {
+    /// Folder of the runs files (`reports/runs`).
+    pub runs: PathBuf,
+    /// Recompute even when a matching cached run exists.
+    pub force: bool,
+    /// Pair ids whose predicted segments are kept for the gallery.
+    pub gallery: Vec<String>,
+}
+
+/// Runs `entry` on `dataset` (or reuses its cached run), calling `progress` once per pair.
+pub fn run_entry(
+    entry: &Entry,
+    dataset: &LoadedDataset,
+    flows: &FlowCache,
+    options: &RunOptions,
+    progress: &(dyn Fn() + Sync),
+) -> Result<RunResult, EvalError> {
+    let path = runs_path(&options.runs, &dataset.name, &entry.name);
+    let meta_path = path.with_extension("json");
+    if !options.force {
+        if let Some(meta) = read_meta(&meta_path).filter(|m| {
+            m.version == RUNS_VERSION
+                && m.fingerprint == entry.fingerprint
+                && m.dataset == dataset.content_hash
+        }) {
+            if let Ok(table) = read_records(&path) {
+                if table.rows.len() == dataset.pairs.len() {
+                    return Ok(RunResult { table, meta, cached: true });
+                }
+            }
+        }
+    }
+    memory::reset_peak();
+    let source_flows = match &entry.runner {
+        Runner::Segmenter { flow, .. } => Some(flows.get(flow, dataset)),
+        _ => None,
+    };
+    let outcomes: Vec<(PairRecord, Option<Vec<u32>>)> = dataset
+        .pairs
+        .par_iter()
+        .enumerate()
+        .map(|(i, pair)| {
+            let flow = source_flows.as_ref().map(|f| &f[i]);
+            let started = Instant::now();
+            let prediction = predict(entry, pair, flow);
+            let ms = started.elapsed().as_secs_f64() * 1e3;
+            let outcome = prediction.and_then(|p| {
+                let scored = score_pair(&p, pair.input(), pair.truth()).map_err(|e| e.to_string());
+                scored.map(|s| (s, p.segments_p))
+            });
+            progress();
+            let (outcome, segments) = match outcome {
+                Ok((score, segments)) => (Ok(score), Some(segments)),
+                Err(reason) => (Err(reason), None),
+            };
+            let keep = options.gallery.iter().any(|g| g == pair.id());
+            let record = PairRecord {
+                pair: pair.id().to_owned(),
+                category: pair.provenance().category.clone(),
+                ms,
+                outcome,
+            };
+            (record, segments.filter(|_| keep))
+        })
+        .collect();
+    let mut gallery = BTreeMap::new();
+    let mut records = Vec::with_capacity(outcomes.len());
+    for (record, segments) in outcomes {
+        if let Some(segments) = segments {
+            gallery.insert(record.pair.clone(), segments);
+        }
+        records.push(record);
+    }
+    let meta = RunMeta {
+        version: RUNS_VERSION,
+        fingerprint: entry.fingerprint.clone(),
+        dataset: dataset.content_hash.clone(),
+        peak_mib: memory::peak_mib(),
+        gallery,
+    };
+    write_records(&path, &records)?;
+    let json = serde_json::to_string_pretty(&meta).expect("run metadata serialises");
+    std::fs::write(&meta_path, json).map_err(|source| EvalError::Io { path: meta_path, source })?;
+    let table = RunTable {
+        header: crate::record::header(),
+        rows: records.iter().map(PairRecord::to_row).collect(),
+    };
+    Ok(RunResult { table, meta, cached: false })
+}

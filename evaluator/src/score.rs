@@ -1,0 +1,236 @@
+//! One pair's scores: a prediction checked for shape and finiteness, then scored against the
+//! ground truth with `pairs::metrics` (flow, segmentation of P and Q, matched motions).
+
+use pairs::metrics::{
+    end_point_errors, matched_iou, motion_errors, pcc, pcc_at, pcc_auc, rand_index, segment_count,
+    MetricError, PCC_THRESHOLDS,
+};
+use pairs::{GroundTruth, PairInput, Prediction};
+
+/// Why a prediction cannot be scored (the pair counts as failed for its method).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[non_exhaustive]
+pub enum Malformed {
+    /// A per-point array has the wrong length.
+    #[error("{what} has {got} entries, expected {expected}")]
+    Length {
+        /// Which field (`flow`, `segments_p`, `segments_q`, `corr_mask`).
+        what: &'static str,
+        /// Entries returned.
+        got: usize,
+        /// Entries expected (points of P or Q).
+        expected: usize,
+    },
+    /// A value is NaN or infinite.
+    #[error("{what}[{index}] is not finite")]
+    NotFinite {
+        /// Which field.
+        what: &'static str,
+        /// First bad entry.
+        index: usize,
+    },
+    /// A metric refused the prediction.
+    #[error(transparent)]
+    Metric(#[from] MetricError),
+}
+
+/// Checks every per-point field of `prediction` against the pair's sizes and finiteness.
+pub fn check_prediction(prediction: &Prediction, input: &PairInput) -> Result<(), Malformed> {
+    let (n_p, n_q) = (input.p.len(), input.q.len());
+    let length = |what, got, expected| {
+        if got == expected {
+            Ok(())
+        } else {
+            Err(Malformed::Length { what, got, expected })
+        }
+    };
+    length("segments_p", prediction.segments_p.len(), n_p)?;
+    if !prediction.segments_q.is_empty() {
+        length("segments_q", prediction.segments_q.len(), n_q)?;
+    }
+    if let Some(flow) = &prediction.flow {
+        length("flow", flow.len(), n_p)?;
+        if let Some(index) = flow.iter().position(|v| !v.iter().all(|c| c.is_finite())) {
+            return Err(Malformed::NotFinite { what: "flow", index });
+        }
+    }
+    if let Some(mask) = &prediction.corr_mask {
+        length("corr_mask", mask.len(), n_p)?;
+        if let Some(index) = mask.iter().position(|v| !v.is_finite()) {
+            return Err(Malformed::NotFinite { what: "corr_mask", index });
+        }
+    }
+    if let Some(index) = prediction.motions.iter().position(|m| !m.is_finite()) {
+        return Err(Malformed::NotFinite { what: "motions", index });
+    }
+    Ok(())
+}
+
+/// Flow scores of one pair.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FlowScore {
+    /// End-point error (mean over P's points).
+    pub epe: f64,
+    /// The PCC curve at thresholds `0, 0.005, ..., 0.25`.
+    pub pcc: [f64; PCC_THRESHOLDS],
+}
+
+impl FlowScore {
+    /// PCC at 0.05.
+    pub fn pcc_005(&self) -> f64 {
+        pcc_at(&self.pcc, 0.05)
+    }
+
+    /// PCC at 0.10.
+    pub fn pcc_010(&self) -> f64 {
+        pcc_at(&self.pcc, 0.10)
+    }
+
+    /// Normalised area under the PCC curve.
+    pub fn pcc_auc(&self) -> f64 {
+        pcc_auc(&self.pcc)
+    }
+}
+
+/// Segmentation scores of one side (P or Q) of one pair.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SegmentScore {
+    /// Rand index.
+    pub rand_index: f64,
+    /// Sum of the matched IoUs over the side's ground-truth parts (the dataset IoU is the
+    /// sum over pairs divided by the number of parts over pairs).
+    pub iou_sum: f64,
+}
+
+/// Everything scored on one pair.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PairScore {
+    /// Flow scores, when the method reports a flow.
+    pub flow: Option<FlowScore>,
+    /// Segmentation of P.
+    pub p: SegmentScore,
+    /// Segmentation of Q, when the method segments Q.
+    pub q: Option<SegmentScore>,
+    /// Ground-truth parts of the pair.
+    pub parts: u32,
+    /// Distinct segments predicted on P.
+    pub segments: u32,
+    /// Rotation errors (degrees) of the matched parts' motions.
+    pub rotation_deg: Vec<f64>,
+    /// Translation errors of the matched parts' motions.
+    pub translation: Vec<f64>,
+}
+
+/// Scores a checked prediction against the ground truth.
+pub fn score_pair(
+    prediction: &Prediction,
+    input: &PairInput,
+    truth: &GroundTruth,
+) -> Result<PairScore, Malformed> {
+    check_prediction(prediction, input)?;
+    let flow = match &prediction.flow {
+        Some(flow) => {
+            let errors = end_point_errors(flow, &truth.flow)?;
+            let epe = errors.iter().sum::<f64>() / errors.len() as f64;
+            Some(FlowScore { epe, pcc: pcc(&errors) })
+        }
+        None => None,
+    };
+    let matching = matched_iou(&prediction.segments_p, &truth.part_p)?;
+    let p = SegmentScore {
+        rand_index: rand_index(&prediction.segments_p, &truth.part_p)?,
+        iou_sum: matching.iou.iter().sum(),
+    };
+    let q = if prediction.segments_q.is_empty() {
+        None
+    } else {
+        Some(SegmentScore {
+            rand_index: rand_index(&prediction.segments_q, &truth.part_q)?,
+            iou_sum: matched_iou(&prediction.segments_q, &truth.part_q)?.iou.iter().sum(),
+        })
+    };
+    let motion = motion_errors(&matching, &prediction.motions, &truth.motions);
+    Ok(PairScore {
+        flow,
+        p,
+        q,
+        parts: matching.iou.len() as u32,
+        segments: segment_count(&prediction.segments_p) as u32,
+        rotation_deg: motion.rotation_deg,
+        translation: motion.translation,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use pairs::math::Vector3;
+    use pairs::synthetic::hinge_pair;
+
+    fn truth_prediction(pair: &pairs::Pair) -> Prediction {
+        let t = pair.truth();
+        Prediction {
+            flow: Some(t.flow.clone()),
+            segments_p: t.part_p.iter().map(|&k| u32::from(k)).collect(),
+            segments_q: t.part_q.iter().map(|&k| u32::from(k)).collect(),
+            motions: t.motions.clone(),
+            ..Prediction::default()
+        }
+    }
+
+    #[test]
+    fn a_relabelled_truth_scores_perfectly() {
+        let pair = hinge_pair("t", 4, 0.5);
+        let mut prediction = truth_prediction(&pair);
+        for s in prediction.segments_p.iter_mut().chain(prediction.segments_q.iter_mut()) {
+            *s = 7 - *s;
+        }
+        let truth_motions = std::mem::take(&mut prediction.motions);
+        prediction.motions = vec![pairs::Similarity::identity(); 8];
+        prediction.motions[7] = truth_motions[0];
+        prediction.motions[6] = truth_motions[1];
+        let score = score_pair(&prediction, pair.input(), pair.truth()).expect("scores");
+        assert_eq!((score.p.rand_index, score.p.iou_sum, score.parts), (1.0, 2.0, 2));
+        assert_eq!(score.q.expect("Q is segmented").iou_sum, 2.0);
+        assert!(score.rotation_deg.iter().all(|&e| e < 1e-2), "{:?}", score.rotation_deg);
+        assert_eq!(score.flow.expect("flow").epe, 0.0);
+    }
+
+    #[test]
+    fn pcc_of_a_known_error_distribution() {
+        // Errors 0.018 on the first half of the points, 0.2 on the second half.
+        let pair = hinge_pair("t", 4, 0.5);
+        let mut prediction = truth_prediction(&pair);
+        let flow = prediction.flow.as_mut().expect("flow");
+        let n = flow.len();
+        for (i, f) in flow.iter_mut().enumerate() {
+            f.z += if i < n / 2 { 0.018 } else { 0.2 };
+        }
+        let score = score_pair(&prediction, pair.input(), pair.truth()).expect("scores");
+        let flow = score.flow.expect("flow");
+        assert!((flow.epe - 0.109).abs() < 1e-6);
+        assert_eq!((flow.pcc_005(), flow.pcc_010()), (0.5, 0.5));
+        assert_eq!((flow.pcc[3], flow.pcc[4], flow.pcc[50]), (0.0, 0.5, 1.0));
+    }
+
+    #[test]
+    fn malformed_predictions_name_the_field() {
+        let pair = hinge_pair("t", 4, 0.5);
+        type Breakage = fn(&mut Prediction);
+        let cases: [(Breakage, &str); 4] = [
+            (|p| p.segments_p.truncate(31), "segments_p has 31 entries, expected 32"),
+            (|p| p.segments_q.truncate(3), "segments_q has 3 entries, expected 32"),
+            (
+                |p| p.flow.as_mut().expect("flow")[5] = Vector3::new(0.0, f32::NAN, 0.0),
+                "flow[5] is not finite",
+            ),
+            (|p| p.motions[1].translation.x = f32::INFINITY, "motions[1] is not finite"),
+        ];
+        for (break_it, message) in cases {
+            let mut prediction = truth_prediction(&pair);
+            break_it(&mut prediction);
+            let err = score_pair(&prediction, pair.input(), pair.truth()).expect_err(message);
+            assert_eq!(err.to_string(), message);
+        }
+    }
+}

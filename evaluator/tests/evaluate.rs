@@ -1,0 +1,166 @@
+//! End-to-end evaluation on a tiny generated dataset: the oracle scores perfectly, broken
+//! methods are reported as failed without stopping the run, reruns are byte-identical and
+//! reuse their cached runs, and a changed fingerprint recomputes.
+
+use std::path::Path;
+use std::sync::Arc;
+
+use evaluator::datasets::DatasetSpec;
+use evaluator::pipeline::{evaluate, Options, Progress, Summary};
+use evaluator::reference::OnePart;
+use evaluator::registry::{Board, FlowSource, Registry};
+use generator::config::GeneratorConfig;
+use pairs::math::Vector3;
+use pairs::{Method, MethodError, PairInput, Prediction};
+
+struct Quiet;
+
+impl Progress for Quiet {
+    fn generating(&self, _: &str, _: u64, _: u64) {}
+    fn start(&self, _: &str, _: &str, _: u64) {}
+    fn tick(&self) {}
+    fn finish(&self, _: &str, _: &str, _: bool) {}
+}
+
+/// Fails in three ways, by pair: a short segmentation, a NaN flow, a panic; else one part.
+struct Broken;
+
+impl Method for Broken {
+    fn name(&self) -> &str {
+        "broken"
+    }
+
+    fn predict(&self, input: &PairInput) -> Result<Prediction, MethodError> {
+        let n = input.p.len();
+        // Ids are `<kind>-<object:05>-<pair>`: objects 0 and 1, pairs 0 and 1 give modes 0..3.
+        let id = input.id.as_bytes();
+        let digit = |from_end: usize| u32::from(id[id.len() - from_end].wrapping_sub(b'0'));
+        let mode = digit(3) * 2 + digit(1);
+        let mut prediction = Prediction {
+            flow: Some(vec![Vector3::zeros(); n]),
+            segments_p: vec![0; n],
+            ..Prediction::default()
+        };
+        match mode {
+            0 => prediction.segments_p.pop().map(|_| ()).unwrap_or(()),
+            1 => prediction.flow.as_mut().expect("set above")[n / 2].x = f32::NAN,
+            2 => panic!("broken on purpose"),
+            _ => {}
+        }
+        Ok(prediction)
+    }
+}
+
+fn spec() -> DatasetSpec {
+    let config = GeneratorConfig {
+        objects: 2,
+        states_per_object: 3,
+        pairs_per_object: 2,
+        points: 96,
+        min_part_points: 4,
+        ..GeneratorConfig::default()
+    };
+    DatasetSpec { name: "tiny".into(), config }
+}
+
+fn registry(one_part_fingerprint: &str) -> Registry {
+    let mut registry = Registry::new();
+    registry.oracle();
+    registry.combine(Arc::new(OnePart), FlowSource::GroundTruth, one_part_fingerprint, None);
+    registry.method(Arc::new(Broken), Board::Both, "broken v1");
+    registry
+}
+
+fn run(root: &Path, registry: &Registry) -> Summary {
+    let options = Options {
+        datasets: Vec::new(),
+        methods: Vec::new(),
+        limit: None,
+        datasets_root: root.join("datasets"),
+        reports: root.join("reports"),
+        force: false,
+        gallery_pairs: 1,
+    };
+    evaluate(registry, &[spec()], &options, &Quiet).expect("the evaluation runs")
+}
+
+fn read(path: &Path) -> String {
+    std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+/// The CSV's rows as maps from column name to cell.
+fn rows(path: &Path) -> Vec<std::collections::HashMap<String, String>> {
+    let text = read(path);
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().expect("a header").split(',').collect();
+    lines
+        .map(|l| {
+            header.iter().map(|h| h.to_string()).zip(l.split(',').map(str::to_owned)).collect()
+        })
+        .collect()
+}
+
+#[test]
+fn oracle_is_perfect_failures_are_counted_and_reruns_are_identical() {
+    let dir = tempfile::tempdir().expect("a temporary folder");
+    let first = run(dir.path(), &registry("one-part v1"));
+    assert_eq!(first.fresh, 3);
+    let reports = dir.path().join("reports");
+    let seg = rows(&reports.join("leaderboard_seg.csv"));
+    let flow = rows(&reports.join("leaderboard_flow.csv"));
+    let row = |table: &[std::collections::HashMap<String, String>], name: &str| {
+        table.iter().find(|r| r["method"] == name).cloned().expect("the row is listed")
+    };
+    let gt = row(&seg, "gt");
+    assert_eq!((gt["ri"].as_str(), gt["iou"].as_str()), ("1.0000", "1.0000"));
+    assert_eq!(gt["rotation_deg"], "0.0000");
+    assert_eq!(row(&flow, "gt")["epe"], "0.0000");
+    assert_eq!(row(&flow, "gt")["pcc_0.05"], "1.0000");
+    // Four pairs, so Broken fails three ways and scores one.
+    let broken = row(&seg, "broken");
+    assert_eq!((broken["pairs"].as_str(), broken["failed"].as_str()), ("1", "3"));
+    assert_eq!(first.failed, 3);
+    let runs = read(&reports.join("runs/tiny/broken.csv"));
+    for reason in [
+        "segments_p has 95 entries, expected 96",
+        "flow[48] is not finite",
+        "panicked: broken on purpose",
+    ] {
+        assert!(runs.contains(reason), "{reason:?} missing from {runs}");
+    }
+    assert!(reports.join("LEADERBOARD.md").exists());
+    assert!(reports.join("pcc_tiny.svg").exists() && reports.join("pcc_tiny.png").exists());
+    let tables = ["leaderboard_flow.csv", "leaderboard_seg.csv"].map(|f| read(&reports.join(f)));
+
+    let again = run(dir.path(), &registry("one-part v1"));
+    assert_eq!((again.fresh, again.cached), (0, 3));
+    assert_eq!(
+        tables,
+        ["leaderboard_flow.csv", "leaderboard_seg.csv"].map(|f| read(&reports.join(f)))
+    );
+
+    let changed = run(dir.path(), &registry("one-part v2"));
+    assert_eq!((changed.fresh, changed.cached), (1, 2));
+    assert_eq!(
+        tables,
+        ["leaderboard_flow.csv", "leaderboard_seg.csv"].map(|f| read(&reports.join(f)))
+    );
+}
+
+#[test]
+fn unknown_names_are_refused_with_the_known_ones() {
+    let dir = tempfile::tempdir().expect("a temporary folder");
+    let options = Options {
+        datasets: vec!["nope".into()],
+        methods: Vec::new(),
+        limit: None,
+        datasets_root: dir.path().join("datasets"),
+        reports: dir.path().join("reports"),
+        force: false,
+        gallery_pairs: 0,
+    };
+    let err = evaluate(&registry("x"), &[spec()], &options, &Quiet).err().expect("refused");
+    assert!(err.to_string().contains("unknown dataset \"nope\"; known: tiny"), "{err}");
+    let err = registry("x").select(&["seqransac@nowhere".into()]).err().expect("refused");
+    assert!(err.to_string().contains("known: gt, one-part@gt-flow, broken"), "{err}");
+}
