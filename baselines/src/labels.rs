@@ -6,7 +6,7 @@
 use pairs::math::{Point3, Real};
 use pairs::segments::compact_labels;
 
-use crate::geometry::{fit_motion_indices, residual, Neighbours};
+use crate::geometry::{fit_motion_trimmed, residual, Neighbours};
 
 /// Labels of the points not `known`, copied from their nearest `known` point of P; every
 /// label 0 when no point is known. Ids are compacted to `0..K`.
@@ -27,18 +27,23 @@ pub fn fill_from_nearest(p: &[Point3], labels: &[u32], known: &[bool]) -> Vec<u3
 }
 
 /// Dissolves segments with fewer than `min_size` points: their points take the label of the
-/// nearest point of a large segment (every label 0 if no segment is large).
-pub fn absorb_small_segments(p: &[Point3], labels: &[u32], min_size: usize) -> Vec<u32> {
+/// nearest point of a large segment (every label 0 if no segment is large). Also returns
+/// which points were in a large segment (the ones the labels are sure of).
+pub fn absorb_small_segments(
+    p: &[Point3],
+    labels: &[u32],
+    min_size: usize,
+) -> (Vec<u32>, Vec<bool>) {
     let labels = compact_labels(labels);
     let mut sizes = vec![0usize; labels.iter().max().map_or(0, |&m| m as usize + 1)];
     for &l in &labels {
         sizes[l as usize] += 1;
     }
     let known: Vec<bool> = labels.iter().map(|&l| sizes[l as usize] >= min_size).collect();
-    fill_from_nearest(p, &labels, &known)
+    (fill_from_nearest(p, &labels, &known), known)
 }
 
-/// `rounds` rounds of: fit every segment's motion on its explained points, give every point
+/// `rounds` rounds of: fit every segment's motion on its explained points (trimmed once), give every point
 /// the segment of smallest residual if that residual is under `threshold`, and mark it
 /// unexplained otherwise (a k-means over motions that ignores outliers); then unexplained
 /// points take their nearest explained neighbour's label. `explained` says which points the
@@ -64,7 +69,7 @@ pub fn reassign_by_motion(
         let fits: Vec<_> = members
             .iter()
             .enumerate()
-            .filter_map(|(k, m)| Some((k as u32, fit_motion_indices(p, moved, m)?)))
+            .filter_map(|(k, m)| Some((k as u32, fit_motion_trimmed(p, moved, m, threshold)?)))
             .collect();
         if fits.is_empty() {
             break;
@@ -101,8 +106,10 @@ mod tests {
         let p = grid();
         // Point 3 (alone in segment 7) is nearest to point 4 of segment 1.
         let labels = [0, 0, 0, 7, 1, 1, 0, 0, 0, 1, 1, 1];
-        assert_eq!(absorb_small_segments(&p, &labels, 3), vec![0, 0, 0, 1, 1, 1, 0, 0, 0, 1, 1, 1]);
-        assert_eq!(absorb_small_segments(&p, &labels, 50), vec![0; 12]);
+        let (merged, known) = absorb_small_segments(&p, &labels, 3);
+        assert_eq!(merged, vec![0, 0, 0, 1, 1, 1, 0, 0, 0, 1, 1, 1]);
+        assert_eq!(known.iter().filter(|k| !**k).count(), 1);
+        assert_eq!(absorb_small_segments(&p, &labels, 50).0, vec![0; 12]);
     }
 
     #[test]

@@ -5,6 +5,8 @@
 //! Segmenters ([`pairs::Segmenter`]: P, Q and a flow on P in; segments of P, one motion
 //! per segment and Q's segments by transfer out):
 //! - [`SeqRansac`] (`"seqransac"`): sequential RANSAC of rigid motion modes;
+//! - [`Spectral`] (`"sc"`): spectral clustering of rigidity affinities;
+//! - [`JLinkage`] (`"jlc"`): J-Linkage clustering of motion hypotheses.
 //!
 //! Every algorithm is seeded per pair from its parameters' seed and the pair's id
 //! ([`geometry::seed_for_pair`]), refuses unusable input with a typed error (wrapped in
@@ -26,13 +28,21 @@
 #![deny(missing_docs)]
 
 pub mod geometry;
+pub mod jlinkage;
 pub mod labels;
 pub mod predict;
 pub mod ransac;
+pub mod spectral;
 
+pub use jlinkage::{JLinkage, JLinkageParams};
 pub use ransac::{SeqRansac, SeqRansacParams};
+pub use spectral::{Spectral, SpectralParams};
 
 /// Every segmenter with its default parameters.
 pub fn segmenters() -> Vec<Box<dyn pairs::Segmenter>> {
-    vec![Box::new(SeqRansac::default())]
+    vec![
+        Box::new(SeqRansac::default()),
+        Box::new(Spectral::default()),
+        Box::new(JLinkage::default()),
+    ]
 }

@@ -9,8 +9,8 @@ pub mod sampling;
 
 pub use input::{check_flow, check_pair, check_prediction, InputError};
 pub use motion::{
-    assign_by_residual, fit_motion_indices, fit_motion_sample, fit_motion_svd, moved_points,
-    residual, SCALE_RANGE,
+    assign_by_residual, fit_motion_indices, fit_motion_sample, fit_motion_svd, fit_motion_trimmed,
+    moved_points, residual, SCALE_RANGE,
 };
 pub use neighbours::Neighbours;
 pub use normals::estimate_normals_pca;

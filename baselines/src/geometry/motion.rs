@@ -33,6 +33,31 @@ pub fn fit_motion_indices(p: &[Point3], moved: &[Point3], indices: &[usize]) -> 
     fit_motion_svd(&src, &dst)
 }
 
+/// A robust fit of the points `members`: fitted on all, then three times refitted on those
+/// with residual under `max(threshold, 2 * median residual)` (so gross flow outliers among
+/// them stop biasing it); `None` if the first fit fails.
+pub fn fit_motion_trimmed(
+    p: &[Point3],
+    moved: &[Point3],
+    members: &[usize],
+    threshold: Real,
+) -> Option<Similarity> {
+    let mut fit = fit_motion_indices(p, moved, members)?;
+    for _ in 0..3 {
+        let mut residuals: Vec<Real> =
+            members.iter().map(|&i| residual(&fit, &p[i], &moved[i])).collect();
+        let median = *residuals.select_nth_unstable_by(members.len() / 2, Real::total_cmp).1;
+        let cut = threshold.max(2.0 * median);
+        let kept: Vec<usize> =
+            members.iter().copied().filter(|&i| residual(&fit, &p[i], &moved[i]) <= cut).collect();
+        match fit_motion_indices(p, moved, &kept) {
+            Some(next) if kept.len() >= 3 => fit = next,
+            _ => break,
+        }
+    }
+    Some(fit)
+}
+
 /// The motion of a minimal sample of three points, or `None` when they are (nearly)
 /// collinear in P or their fit is degenerate.
 pub fn fit_motion_sample(p: &[Point3], moved: &[Point3], sample: [usize; 3]) -> Option<Similarity> {
