@@ -42,13 +42,10 @@ pub fn cluster_jaccard(prefs: &Preferences, n: usize) -> Vec<u32> {
     let mut active = vec![true; n];
     let mut owner: Vec<u32> = (0..n as u32).collect();
     let mut best: Vec<(usize, f32)> = (0..n).map(|i| nearest(i, &active, &distance, n)).collect();
-    loop {
-        let Some(i) = (0..n)
-            .filter(|&i| active[i])
-            .min_by(|&a, &b| best[a].1.total_cmp(&best[b].1).then(a.cmp(&b)))
-        else {
-            break;
-        };
+    while let Some(i) = (0..n)
+        .filter(|&i| active[i])
+        .min_by(|&a, &b| best[a].1.total_cmp(&best[b].1).then(a.cmp(&b)))
+    {
         let (j, d) = best[i];
         if d >= 1.0 || j == i {
             break;

@@ -98,8 +98,8 @@ mod tests {
             (0..30).map(|i| vec![(i / 10) as f64 * 5.0 + (i % 10) as f64 * 0.01, 1.0]).collect();
         let labels = cluster_kmeans(&rows, 3, 4, 50, &mut ChaCha8Rng::seed_from_u64(3));
         for i in 0..30 {
-            assert_eq!(labels[i] == labels[(i / 10) * 10], true);
-            assert_eq!(labels[i] == labels[(i + 10) % 30], false);
+            assert_eq!(labels[i], labels[(i / 10) * 10]);
+            assert_ne!(labels[i], labels[(i + 10) % 30]);
         }
         assert_eq!(cluster_kmeans(&rows, 1, 4, 50, &mut ChaCha8Rng::seed_from_u64(3)), vec![0; 30]);
     }
