@@ -43,6 +43,13 @@ fn degenerate_inputs_give_a_valid_prediction_or_an_error() {
                 Ok(prediction) => assert_valid(&name, &input, &prediction),
                 Err(e) => assert!(!e.to_string().is_empty(), "{name}"),
             }
+            // Inputs that are degenerate but well defined must get a prediction.
+            if ["collinear", "zero flow", "three points", "repeated point"].contains(&case) {
+                let prediction = segmenter.segment(&input, &flow).expect(&name);
+                if case == "zero flow" {
+                    assert_eq!(prediction.motions.len(), 1, "{name}: one rigid part");
+                }
+            }
         }
     }
 }

@@ -32,7 +32,7 @@ pub struct JLinkageParams {
     /// Largest residual (Q's normalised units) for a hypothesis to explain a point.
     /// Default 0.03.
     pub inlier_threshold: Real,
-    /// Motion hypotheses drawn. Default 256.
+    /// Motion hypotheses drawn. Default 512.
     pub hypotheses: usize,
     /// Neighbours a sample's second and third points are drawn from. Default 16.
     pub neighbours: usize,
@@ -49,7 +49,7 @@ impl Default for JLinkageParams {
     fn default() -> Self {
         Self {
             inlier_threshold: 0.03,
-            hypotheses: 256,
+            hypotheses: 512,
             neighbours: 16,
             min_segment_fraction: 0.03,
             reassign_rounds: 1,

@@ -41,9 +41,9 @@ use crate::predict::run_segmenter;
 /// (`examples/sweep.rs`, `reports/baselines_sweep.csv`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SeqRansacParams {
-    /// Largest residual (Q's normalised units) of an inlier. Default 0.03.
+    /// Largest residual (Q's normalised units) of an inlier. Default 0.02.
     pub inlier_threshold: Real,
-    /// Minimal samples drawn per mode. Default 300.
+    /// Minimal samples drawn per mode. Default 500.
     pub iterations: usize,
     /// Most modes extracted. Default 10 (the paper's).
     pub max_modes: usize,
@@ -67,8 +67,8 @@ pub struct SeqRansacParams {
 impl Default for SeqRansacParams {
     fn default() -> Self {
         Self {
-            inlier_threshold: 0.03,
-            iterations: 300,
+            inlier_threshold: 0.02,
+            iterations: 500,
             max_modes: 10,
             stop_fraction: 0.05,
             min_mode_fraction: 0.02,

@@ -29,7 +29,7 @@ use crate::predict::run_method;
 /// Parameters of [`register_embedded_deformation`].
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct EdParams {
-    /// Graph nodes. Default 32.
+    /// Graph nodes. Default 48.
     pub nodes: usize,
     /// Nodes blended per point. Default 4 (Sumner et al.'s k).
     pub influence: usize,
@@ -54,7 +54,7 @@ pub struct EdParams {
 impl Default for EdParams {
     fn default() -> Self {
         Self {
-            nodes: 32,
+            nodes: 48,
             influence: 4,
             graph_neighbours: 6,
             iterations: 10,

@@ -54,10 +54,14 @@ fn line_angle(a: &Vector3, b: &Vector3) -> Real {
 }
 
 /// Dense affinity between the points `samples`:
-/// `exp(-(dist_change / sigma_distance)^2 - (angle_change / sigma_angle)^2)`, where
+/// `exp(-(dist_change / sigma_distance)^2 - (angle_change / sigma_angle)^2
+/// - (|p_i - p_j| / sigma_space)^2)`, where
 /// `dist_change = |scale * |p_i - p_j| - |m_i - m_j||` (m = p + flow) and `angle_change` is
 /// the change of the angle between the two points' normals (normals of P, and the same
-/// normals carried by the flow, [`transport_normals`]). Diagonal 1.
+/// normals carried by the flow, [`transport_normals`]); the last term (beyond Tzionas &
+/// Gall, infinite `sigma_space` disables it) keeps far-apart points from being affine only
+/// because the flow happens to keep their distance, which lets small parts stand out.
+/// Diagonal 1.
 #[allow(clippy::too_many_arguments)]
 pub fn affinity_flow(
     p: &[Point3],
@@ -68,6 +72,7 @@ pub fn affinity_flow(
     scale: Real,
     sigma_distance: Real,
     sigma_angle: Real,
+    sigma_space: Real,
 ) -> DMatrix<f64> {
     let m = samples.len();
     let mut w = DMatrix::from_element(m, m, 1.0);
@@ -79,7 +84,8 @@ pub fn affinity_flow(
             let angle = (line_angle(&normals_p[i], &normals_p[j])
                 - line_angle(&normals_moved[i], &normals_moved[j]))
                 / sigma_angle;
-            let value = f64::from(-(dist * dist) - angle * angle).exp();
+            let space = (p[i] - p[j]).norm() / sigma_space;
+            let value = f64::from(-(dist * dist) - angle * angle - space * space).exp();
             w[(a, b)] = value;
             w[(b, a)] = value;
         }
@@ -98,7 +104,17 @@ mod tests {
         let moved =
             [Point3::new(0.0, 0.0, 1.0), Point3::new(1.0, 0.0, 1.0), Point3::new(0.0, 1.5, 1.0)];
         let normals = [Vector3::z(); 3];
-        let w = affinity_flow(&p, &moved, &normals, &normals, &[0, 1, 2], 1.0, 0.1, 0.3);
+        let w = affinity_flow(
+            &p,
+            &moved,
+            &normals,
+            &normals,
+            &[0, 1, 2],
+            1.0,
+            0.1,
+            0.3,
+            Real::INFINITY,
+        );
         assert!((w[(0, 1)] - 1.0).abs() < 1e-9 && w[(1, 0)] == w[(0, 1)]);
         assert!(w[(0, 2)] < 1e-6);
         assert_eq!(estimate_pair_scale(&p, &moved, &[0, 1]), 1.0);

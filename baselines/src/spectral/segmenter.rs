@@ -41,13 +41,16 @@ use crate::predict::run_segmenter;
 /// (`examples/sweep.rs`, `reports/baselines_sweep.csv`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SpectralParams {
-    /// Scale (Q's normalised units) of the change of a pair's distance. Default 0.05.
+    /// Scale (Q's normalised units) of the change of a pair's distance. Default 0.01.
     pub sigma_distance: Real,
-    /// Scale (radians) of the change of the angle between a pair's normals. Default 0.3.
+    /// Scale (radians) of the change of the angle between a pair's normals. Default 0.1.
     pub sigma_angle: Real,
+    /// Scale (P's normalised units) of the distance between two points, beyond Tzionas &
+    /// Gall (infinity disables it). Default 0.3.
+    pub sigma_space: Real,
     /// Most clusters the eigengap may choose. Default 10 (the paper's part limit).
     pub max_clusters: usize,
-    /// Farthest-point samples clustered. Default 192.
+    /// Farthest-point samples clustered. Default 256.
     pub samples: usize,
     /// Neighbours of the local-PCA normals. Default 12.
     pub normal_neighbours: usize,
@@ -73,10 +76,11 @@ pub struct SpectralParams {
 impl Default for SpectralParams {
     fn default() -> Self {
         Self {
-            sigma_distance: 0.05,
-            sigma_angle: 0.3,
+            sigma_distance: 0.01,
+            sigma_angle: 0.1,
+            sigma_space: 0.3,
             max_clusters: 10,
-            samples: 192,
+            samples: 256,
             normal_neighbours: 12,
             regularisation: 0.01,
             outlier_degree: 0.1,
@@ -121,6 +125,7 @@ pub fn segment_spectral(
         scale,
         params.sigma_distance,
         params.sigma_angle,
+        params.sigma_space,
     );
     // Flow outliers are affine to almost nothing; left in, each would be a near-isolated
     // block with an eigenvalue near 1 and the eigengap would count them as clusters.
