@@ -53,9 +53,8 @@ fn line_angle(a: &Vector3, b: &Vector3) -> Real {
     a.dot(b).abs().clamp(0.0, 1.0).acos()
 }
 
-/// Dense affinity between the points `samples`:
-/// `exp(-(dist_change / sigma_distance)^2 - (angle_change / sigma_angle)^2
-/// - (|p_i - p_j| / sigma_space)^2)`, where
+/// Dense affinity between the points `samples`, `exp(-(dist_change / sigma_distance)^2 -
+/// (angle_change / sigma_angle)^2 - (|p_i - p_j| / sigma_space)^2)`, where
 /// `dist_change = |scale * |p_i - p_j| - |m_i - m_j||` (m = p + flow) and `angle_change` is
 /// the change of the angle between the two points' normals (normals of P, and the same
 /// normals carried by the flow, [`transport_normals`]); the last term (beyond Tzionas &
