@@ -1,7 +1,7 @@
 //! Chooses the baselines' thresholds on the validation split (never on test data) and
 //! writes `reports/baselines_sweep.csv`. This should take a few minutes in release mode and
 //! print the chosen values, which are the `Default`s of `SeqRansacParams`, `JLinkageParams`,
-//! `SpectralParams` and `IcpParams`.
+//! `SpectralParams`, `IcpParams` and `NrrParams`.
 //!
 //! ```text
 //! cargo run --release -p baselines --example sweep -- [pairs] [points]
@@ -12,7 +12,8 @@
 //! and corrupted as in the tests ("noisy": 5% Gaussian noise, 10% outliers), since in the
 //! benchmark they run on estimated flows; each value is scored by the matched IoU averaged
 //! over every ground-truth part of every pair, and the best mean over the two flows wins.
-//! ICP's trimming is scored by the flow's end-point error.
+//! ICP's trimming is scored by the flow's end-point error, NRR's feature weight and part
+//! threshold by its own segments' IoU. Rows `defaults` give every flow method's EPE.
 
 #[path = "../tests/support/mod.rs"]
 mod support;
@@ -21,8 +22,8 @@ use std::fmt::Write as _;
 
 use anyhow::Context;
 use baselines::{
-    IcpFlow, IcpParams, JLinkage, JLinkageParams, SeqRansac, SeqRansacParams, Spectral,
-    SpectralParams,
+    IcpFlow, IcpParams, JLinkage, JLinkageParams, Nrr, NrrParams, SeqRansac, SeqRansacParams,
+    Spectral, SpectralParams,
 };
 use generator::categories::Split;
 use generator::config::GeneratorConfig;
@@ -187,6 +188,57 @@ fn main() -> anyhow::Result<()> {
         )?;
     }
     println!("icp: keep_fraction = {} (EPE {:.4})", icp_rows[best].0, icp_rows[best].1);
+
+    let mut nrr_rows = Vec::new();
+    for features in [0.0, 0.3, 1.0] {
+        for threshold in [0.01, 0.02, 0.03, 0.05] {
+            let params = NrrParams {
+                weight_features: features,
+                segment_threshold: threshold,
+                ..NrrParams::default()
+            };
+            let (mut iou, mut parts, mut flow_error) = (0.0, 0usize, 0.0);
+            for pair in &pairs {
+                let prediction = Nrr::with_params(params).predict(pair.input())?;
+                let matching = matched_iou(&prediction.segments_p, &pair.truth().part_p)?;
+                iou += matching.iou.iter().sum::<f64>();
+                parts += matching.iou.len();
+                flow_error +=
+                    epe(prediction.flow.as_deref().unwrap_or_default(), &pair.truth().flow)?;
+            }
+            nrr_rows.push((
+                format!("{features}/{threshold}"),
+                iou / parts.max(1) as f64,
+                flow_error / pairs.len() as f64,
+            ));
+        }
+    }
+    let best =
+        nrr_rows.iter().enumerate().max_by(|a, b| a.1 .1.total_cmp(&b.1 .1)).map_or(0, |(i, _)| i);
+    for (i, (value, iou, e)) in nrr_rows.iter().enumerate() {
+        writeln!(
+            csv,
+            "nrr,weight_features/segment_threshold,{value},own,{},{points},{iou:.4},,{e:.4},{}",
+            pairs.len(),
+            i == best
+        )?;
+    }
+    println!(
+        "nrr: weight_features/segment_threshold = {} (mean IoU {:.3}, EPE {:.4})",
+        nrr_rows[best].0, nrr_rows[best].1, nrr_rows[best].2
+    );
+
+    // Every flow method at its defaults, for reference (nothing chosen here).
+    for method in baselines::methods() {
+        let mut total = 0.0;
+        for pair in &pairs {
+            let prediction = method.predict(pair.input())?;
+            total += epe(prediction.flow.as_deref().unwrap_or_default(), &pair.truth().flow)?;
+        }
+        let e = total / pairs.len() as f64;
+        writeln!(csv, "{},defaults,,own,{},{points},,,{e:.4},", method.name(), pairs.len())?;
+        println!("{} at its defaults: EPE {e:.4}", method.name());
+    }
 
     let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../reports");
     std::fs::create_dir_all(&root)?;

@@ -3,8 +3,8 @@
 //! After Huang, Adams, Wicke & Guibas 2008 ("Non-rigid registration under isometric
 //! deformations"), the paper's NRR row, which reports its own flow and segmentation:
 //! 1. its own correspondences: FPFH matches ([`crate::descriptors`]) of farthest-point
-//!    samples of P, filtered for geometric consistency (a match is kept when enough other
-//!    matches preserve its distances, up to the pair's scale, the isometry assumption);
+//!    samples of P, filtered for geometric consistency by spectral matching (matches that
+//!    preserve each other's distances, up to the pair's scale: the isometry assumption);
 //! 2. a deformation graph ([`super::graph`]) whose nodes carry rigid transforms, fitted by
 //!    iterative non-rigid registration from trimmed rigid ICP: each round takes closest
 //!    points in Q (plus the consistent matches, with a weight that decays), then alternates
@@ -25,7 +25,7 @@
 //! under-segments parts whose relative motion is small and over-segments where the fit
 //! bends rigid parts.
 
-use nalgebra::{DMatrix, Matrix3, Vector3 as Vector3d};
+use nalgebra::{DMatrix, DVector, Matrix3, Vector3 as Vector3d};
 use pairs::math::{Point3, Real, Vector3};
 use pairs::{Method, MethodError, PairInput, Prediction};
 
@@ -38,7 +38,8 @@ use crate::geometry::{sample_farthest_points, InputError, Neighbours};
 use crate::labels::absorb_small_segments;
 use crate::predict::run_method;
 
-/// Parameters of [`register_nonrigid_graph`].
+/// Parameters of [`register_nonrigid_graph`]; the feature weight and part threshold were
+/// chosen on the validation split (`examples/sweep.rs`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct NrrParams {
     /// Graph nodes. Default 48.
@@ -54,7 +55,7 @@ pub struct NrrParams {
     /// Weight of the rigidity regulariser relative to the mean data term. Default 1.
     pub weight_reg: f64,
     /// Initial weight of the feature matches relative to the closest points; multiplied by
-    /// `feature_decay` each round. Default 1.
+    /// `feature_decay` each round. Default 0.3.
     pub weight_features: f64,
     /// Decay of the feature weight per round. Default 0.7.
     pub feature_decay: f64,
@@ -62,14 +63,14 @@ pub struct NrrParams {
     pub keep_fraction: Real,
     /// Samples of P matched by descriptor. Default 128.
     pub feature_samples: usize,
-    /// Two matches are consistent when their distances differ by less than this (Q's
-    /// units). Default 0.05.
+    /// Scale (Q's units) of the difference of two matches' distances in the consistency
+    /// matrix. Default 0.05.
     pub consistency_threshold: Real,
-    /// A match is kept when it is consistent with at least this fraction of the best
-    /// match's consistent count. Default 0.5.
+    /// A match is kept when its spectral-matching score is at least this fraction of the
+    /// best match's. Default 0.5.
     pub consistency_fraction: Real,
     /// Neighbouring nodes are one part when their transforms disagree by less than this
-    /// (Q's units). Default 0.03.
+    /// (Q's units). Default 0.01.
     pub segment_threshold: f64,
     /// Parts with fewer than this fraction of P's points are dissolved. Default 0.05.
     pub min_segment_fraction: Real,
@@ -88,13 +89,13 @@ impl Default for NrrParams {
             iterations: 15,
             alternations: 2,
             weight_reg: 1.0,
-            weight_features: 1.0,
+            weight_features: 0.3,
             feature_decay: 0.7,
             keep_fraction: 0.9,
             feature_samples: 128,
             consistency_threshold: 0.05,
             consistency_fraction: 0.5,
-            segment_threshold: 0.03,
+            segment_threshold: 0.01,
             min_segment_fraction: 0.05,
             fpfh: FpfhParams::default(),
             icp: IcpParams::default(),
@@ -129,27 +130,42 @@ fn consistent_matches(
     params: &NrrParams,
 ) -> Vec<(usize, usize)> {
     let samples = sample_farthest_points(p, params.feature_samples);
-    let sample_points: Vec<Point3> = samples.iter().map(|&i| p[i]).collect();
-    let matched = match_fpfh(&sample_points, q, &params.fpfh);
-    let pairs: Vec<(usize, usize)> = samples.iter().copied().zip(matched).collect();
-    let votes: Vec<usize> = pairs
-        .iter()
-        .map(|&(i, a)| {
-            pairs
-                .iter()
-                .filter(|&&(j, b)| {
-                    j != i
-                        && (scale * (p[i] - p[j]).norm() - (q[a] - q[b]).norm()).abs()
-                            < params.consistency_threshold
-                })
-                .count()
-        })
-        .collect();
-    let best = votes.iter().copied().max().unwrap_or(0) as Real;
+    // Descriptors of the whole clouds (the same neighbourhood scale on both sides), then
+    // the samples' matches.
+    let matched = match_fpfh(p, q, &params.fpfh);
+    let pairs: Vec<(usize, usize)> = samples.iter().map(|&i| (i, matched[i])).collect();
+    // Spectral matching (Leordeanu & Hebert 2005): the principal eigenvector of the pairwise
+    // consistency matrix scores each match by how consistent it is with the largest
+    // mutually consistent group, which plain vote counts (easily won by chance on distances
+    // in [0, 1]) are not.
+    let sigma = f64::from(params.consistency_threshold.max(1e-6));
+    let m = pairs.len();
+    let mut consistency = DMatrix::<f64>::zeros(m, m);
+    for (x, &(i, a)) in pairs.iter().enumerate() {
+        for (y, &(j, b)) in pairs.iter().enumerate().skip(x + 1) {
+            let change =
+                f64::from((scale * (p[i] - p[j]).norm() - (q[a] - q[b]).norm()).abs()) / sigma;
+            if change < 3.0 && i != j && a != b {
+                let w = (-change * change).exp();
+                consistency[(x, y)] = w;
+                consistency[(y, x)] = w;
+            }
+        }
+    }
+    let mut score = DVector::<f64>::from_element(m, 1.0);
+    for _ in 0..50 {
+        let next = &consistency * &score;
+        let norm = next.norm();
+        if !(norm > 0.0 && norm.is_finite()) {
+            return Vec::new();
+        }
+        score = next / norm;
+    }
+    let best = score.max();
     pairs
         .into_iter()
-        .zip(votes)
-        .filter(|&(_, v)| best > 0.0 && v as Real >= params.consistency_fraction * best)
+        .zip(score.iter())
+        .filter(|&(_, &v)| best > 0.0 && v >= f64::from(params.consistency_fraction) * best)
         .map(|(pair, _)| pair)
         .collect()
 }
