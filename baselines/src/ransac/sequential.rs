@@ -209,3 +209,45 @@ impl Segmenter for SeqRansac {
         })
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use pairs::math::Rotation3;
+    use rand::Rng;
+
+    #[test]
+    fn recovers_a_planted_motion_under_half_outliers() {
+        let mut rng = ChaCha8Rng::seed_from_u64(4);
+        let p: Vec<Point3> = (0..300)
+            .map(|_| {
+                Point3::new(
+                    rng.random::<Real>() - 0.5,
+                    rng.random::<Real>() - 0.5,
+                    rng.random::<Real>() * 0.2,
+                )
+            })
+            .collect();
+        let truth = Similarity {
+            rotation: Rotation3::new(Vector3::new(0.1, 0.5, -0.2)).into_inner(),
+            translation: Vector3::new(0.05, 0.1, 0.0),
+            scale: 1.0,
+        };
+        // Even points follow the planted motion, odd points get random flow.
+        let flow: Vec<Vector3> = p
+            .iter()
+            .enumerate()
+            .map(|(i, x)| match i % 2 {
+                0 => truth.apply(x) - x,
+                _ => Vector3::new(rng.random(), rng.random(), rng.random()) - Vector3::repeat(0.5),
+            })
+            .collect();
+        let labels = segment_ransac(&p, &flow, &SeqRansacParams::default(), 1);
+        let planted = labels[0];
+        assert!((0..300).step_by(2).all(|i| labels[i] == planted));
+        let members: Vec<usize> =
+            (0..300).filter(|&i| labels[i] == planted && i % 2 == 0).collect();
+        let fit = fit_motion_indices(&p, &moved_points(&p, &flow), &members).expect("well posed");
+        assert!(pairs::transform::rotation_error_deg(&fit.rotation, &truth.rotation) < 0.1);
+    }
+}
