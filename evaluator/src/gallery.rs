@@ -1,6 +1,6 @@
 //! The segmentation gallery: for a few fixed pairs per dataset, P coloured by its
 //! ground-truth parts and by each row's predicted segments, side by side in one PNG per pair
-//! (`reports/gallery/segmentation/<dataset>-<pair>.png`). Predicted segments are relabelled
+//! (`reports/gallery/segmentation/<dataset>/<pair>.png`). Predicted segments are relabelled
 //! to the ground-truth part they match (Hungarian, as for IoU), so matching colours mean
 //! matching parts; unmatched segments take colours past the parts'.
 
@@ -67,9 +67,9 @@ pub fn write_picture(
         let panel = render_labelled(points, labels, SPLAT);
         imageops::replace(&mut image, &panel, i64::from(i as u32 * PANEL), 0);
     }
-    let path = dir.join(format!("{dataset}-{}.png", pair.id()));
+    let path = dir.join(dataset).join(format!("{}.png", pair.id()));
     let fail = |message: String| EvalError::Plot { path: path.clone(), message };
-    std::fs::create_dir_all(dir).map_err(|e| fail(e.to_string()))?;
+    std::fs::create_dir_all(dir.join(dataset)).map_err(|e| fail(e.to_string()))?;
     image.save(&path).map_err(|e| fail(e.to_string()))?;
     Ok(GalleryPicture {
         path,

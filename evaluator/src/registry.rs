@@ -122,7 +122,9 @@ impl Registry {
         self.push(Entry { name, runner, board, fingerprint: fingerprint.into() })
     }
 
-    /// Adds `segmenter` on `flow` as `<segmenter>@<flow>`, or under `name` when given.
+    /// Adds `segmenter` on `flow` as `<segmenter>@<flow>` (segmentation board only: the flow
+    /// is the source's), or under `name` when given: a row of its own such as `one-part`,
+    /// which reports its own flow and so is on both boards.
     pub fn combine(
         &mut self,
         segmenter: Arc<dyn Segmenter>,

@@ -1,10 +1,15 @@
-//! The default registry of `--all`: the `gt` oracle, `one-part`, the network (`net`) from the
-//! shipped weights, and every segmenter on the ground-truth flow (oracle rows) and on the
+//! The default registry of `--all`: the `gt` oracle, the network (`net`) from the shipped
+//! weights, `one-part` (one rigid part on nearest-neighbour flow), NRR and the flow baselines,
+//! and every segmentation baseline on the ground-truth flow (oracle rows) and on the
 //! network's flow (the paper's protocol).
 
+use std::fmt::Debug;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
+use baselines::{
+    EmbeddedDeformation, FpfhFlow, IcpFlow, JLinkage, NearestFlow, Nrr, SeqRansac, Spectral,
+};
 use burn::prelude::Device;
 use model::checkpoint::load_weights;
 use model::config::TrainConfig;
@@ -19,9 +24,10 @@ use crate::registry::{Board, FlowSource, Registry};
 /// The shipped weights the default rows use (a folder with `config.toml` and `model.bpk`).
 pub const DEFAULT_WEIGHTS: &str = "model/weights/cpu";
 
-/// Fingerprint of code that has no parameters or weights: the evaluator's version.
-fn code_fingerprint(name: &str) -> String {
-    format!("{name} evaluator-{}", env!("CARGO_PKG_VERSION"))
+/// Fingerprint of a method from its parameters (its `Debug` form) and the workspace version:
+/// changing a parameter recomputes the method's rows.
+fn fingerprint(method: &impl Debug) -> String {
+    format!("{method:?} v{}", env!("CARGO_PKG_VERSION"))
 }
 
 /// The network as a method, with the sha256 of its config and weights as fingerprint.
@@ -41,18 +47,55 @@ pub fn load_network(weights: &Path) -> Result<(Arc<dyn Method>, String), EvalErr
     Ok((Arc::new(NetworkMethod::new("net", net)), fingerprint))
 }
 
+/// A whole method and its fingerprint.
+fn whole<M: Method + Debug + 'static>(method: M) -> (Arc<dyn Method>, String) {
+    let fingerprint = fingerprint(&method);
+    (Arc::new(method), fingerprint)
+}
+
+/// A segmenter and its fingerprint.
+fn segmenter<S: Segmenter + Debug + 'static>(segmenter: S) -> (Arc<dyn Segmenter>, String) {
+    let fingerprint = fingerprint(&segmenter);
+    (Arc::new(segmenter), fingerprint)
+}
+
 /// The default rows, with the network loaded from `weights`.
 pub fn standard_registry(weights: &Path) -> Result<Registry, EvalError> {
     let (net, net_fingerprint) = load_network(weights)?;
+    let (nearest, nearest_fingerprint) = whole(NearestFlow);
     let mut registry = Registry::new();
     registry.oracle();
     registry.method(net.clone(), Board::Both, &net_fingerprint);
-    let one_part: Arc<dyn Segmenter> = Arc::new(OnePart);
-    let sources =
-        [(FlowSource::GroundTruth, String::new()), (FlowSource::Method(net), net_fingerprint)];
+    let (one_part, one_part_fingerprint) = segmenter(OnePart);
+    registry.combine(
+        one_part,
+        FlowSource::Method(nearest.clone()),
+        &format!("{one_part_fingerprint} on {nearest_fingerprint}"),
+        Some("one-part"),
+    );
+    let (nrr, nrr_fingerprint) = whole(Nrr::default());
+    registry.method(nrr, Board::Both, &nrr_fingerprint);
+    registry.method(nearest, Board::Flow, &nearest_fingerprint);
+    for (method, fingerprint) in [
+        whole(IcpFlow::default()),
+        whole(EmbeddedDeformation::default()),
+        whole(FpfhFlow::default()),
+    ] {
+        registry.method(method, Board::Flow, &fingerprint);
+    }
+    let sources = [
+        (FlowSource::GroundTruth, "ground truth".to_owned()),
+        (FlowSource::Method(net), net_fingerprint),
+    ];
     for (source, source_fingerprint) in sources {
-        let fingerprint = format!("{} on {source_fingerprint}", code_fingerprint("one-part"));
-        registry.combine(one_part.clone(), source, &fingerprint, None);
+        for (seg, fingerprint) in [
+            segmenter(SeqRansac::default()),
+            segmenter(Spectral::default()),
+            segmenter(JLinkage::default()),
+        ] {
+            let fingerprint = format!("{fingerprint} on {source_fingerprint}");
+            registry.combine(seg, source.clone(), &fingerprint, None);
+        }
     }
     Ok(registry)
 }
