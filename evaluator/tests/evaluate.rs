@@ -129,6 +129,10 @@ fn oracle_is_perfect_failures_are_counted_and_reruns_are_identical() {
         assert!(runs.contains(reason), "{reason:?} missing from {runs}");
     }
     assert!(reports.join("LEADERBOARD.md").exists());
+    let gallery = reports.join("gallery/segmentation/tiny/sf2f-00000-0.png");
+    let picture = image::open(&gallery).expect("the gallery picture reads back");
+    // Ground truth, one-part and broken: three panels.
+    assert_eq!(picture.width(), 3 * generator::gallery::PANEL);
     assert!(reports.join("pcc_tiny.svg").exists() && reports.join("pcc_tiny.png").exists());
     let tables = ["leaderboard_flow.csv", "leaderboard_seg.csv"].map(|f| read(&reports.join(f)));
 
