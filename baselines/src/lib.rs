@@ -18,8 +18,16 @@
 //!
 //! Every algorithm is seeded per pair from its parameters' seed and the pair's id
 //! ([`geometry::seed_for_pair`]), refuses unusable input with a typed error (wrapped in
-//! [`pairs::MethodError`]) and never returns NaN. Thresholds are `…Params` fields whose
-//! defaults were chosen on the validation split by `examples/sweep.rs`.
+//! [`pairs::MethodError`]) and never returns NaN. Every threshold is a `…Params` field with
+//! a documented `Default`; the inlier thresholds, SC's scales, ICP's trimming and NRR's
+//! part threshold were chosen on the validation split by `examples/sweep.rs`
+//! (`reports/baselines_sweep.csv`).
+//!
+//! Modules follow the math: [`geometry`] (k-d tree neighbours, local-PCA normals, sample
+//! motion fits, seeding and sampling, input checks), [`labels`] (label post-processing
+//! shared by the segmenters), [`ransac`], [`spectral`], [`jlinkage`], [`registration`]
+//! (correspondences, deformation graph, ICP, ED, NRR) and [`descriptors`] (FPFH);
+//! [`predict`] wraps an algorithm into the `pairs` traits.
 //!
 //! ```
 //! use baselines::SeqRansac;

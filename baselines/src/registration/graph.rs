@@ -100,14 +100,6 @@ impl DeformationGraph {
             })
             .collect()
     }
-
-    /// The node each point depends on most.
-    pub fn main_node(&self) -> Vec<usize> {
-        self.weights
-            .iter()
-            .map(|w| w.iter().max_by(|a, b| a.1.total_cmp(&b.1)).map_or(0, |&(j, _)| j))
-            .collect()
-    }
 }
 
 #[cfg(test)]

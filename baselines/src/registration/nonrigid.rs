@@ -11,10 +11,10 @@
 //!    a linear solve of the node translations and a Procrustes update of each node's
 //!    rotation (as-rigid-as-possible local/global steps), with a regulariser asking
 //!    neighbouring nodes to agree on each other's positions;
-//! 3. parts: neighbouring nodes whose rigid transforms agree (they move each other's
-//!    positions to within [`NrrParams::segment_threshold`]) are joined; each point takes
-//!    its main node's part, small parts are dissolved, and the motions are fitted on NRR's
-//!    own flow.
+//! 3. parts: the node transforms are clustered by J-Linkage over the points (each point
+//!    prefers the node transforms that move it to its deformed position within
+//!    [`NrrParams::segment_threshold`]), small parts are dissolved, and the motions are
+//!    fitted on NRR's own flow.
 //!
 //! Departures: Huang et al. cluster correspondences by geodesic consistency on meshes and
 //! optimise with a different solver; point clouds here have no mesh, so consistency is
@@ -35,8 +35,10 @@ use super::rigid::{register_rigid_icp, IcpParams};
 use super::solve::rotation_procrustes;
 use crate::descriptors::{match_fpfh, FpfhParams};
 use crate::geometry::{sample_farthest_points, InputError, Neighbours};
+use crate::jlinkage::{cluster_jaccard, Preferences};
 use crate::labels::absorb_small_segments;
 use crate::predict::run_method;
+use pairs::transform::Similarity;
 
 /// Parameters of [`register_nonrigid_graph`]; the feature weight and part threshold were
 /// chosen on the validation split (`examples/sweep.rs`).
@@ -69,8 +71,8 @@ pub struct NrrParams {
     /// A match is kept when its spectral-matching score is at least this fraction of the
     /// best match's. Default 0.5.
     pub consistency_fraction: Real,
-    /// Neighbouring nodes are one part when their transforms disagree by less than this
-    /// (Q's units). Default 0.01.
+    /// A node transform explains a point when it moves it to within this of its deformed
+    /// position (Q's units). Default 0.03.
     pub segment_threshold: f64,
     /// Parts with fewer than this fraction of P's points are dissolved. Default 0.05.
     pub min_segment_fraction: Real,
@@ -95,7 +97,7 @@ impl Default for NrrParams {
             feature_samples: 128,
             consistency_threshold: 0.05,
             consistency_fraction: 0.5,
-            segment_threshold: 0.01,
+            segment_threshold: 0.03,
             min_segment_fraction: 0.05,
             fpfh: FpfhParams::default(),
             icp: IcpParams::default(),
@@ -259,31 +261,28 @@ fn solve_rotations(
     }
 }
 
-/// Joins neighbouring nodes whose transforms agree; the part id of every node.
-fn cluster_nodes(
+/// Parts from the node transforms, by J-Linkage ([`crate::jlinkage`]) with the node
+/// transforms as the hypotheses: each point prefers the transforms that take it (P after
+/// the rigid start, `start`) to its deformed position within `threshold`, and points
+/// sharing preferences merge. Returns a cluster id per point.
+fn cluster_node_transforms(
     graph: &DeformationGraph,
     transforms: &[NodeTransform],
+    start: &[Point3],
+    deformed: &[Point3],
     threshold: f64,
 ) -> Vec<u32> {
-    let mut parent: Vec<usize> = (0..graph.nodes.len()).collect();
-    fn root(parent: &mut [usize], mut i: usize) -> usize {
-        while parent[i] != i {
-            parent[i] = parent[parent[i]];
-            i = parent[i];
-        }
-        i
-    }
-    for &(j, k) in &graph.edges {
-        let (gj, gk) = (&graph.nodes[j], &graph.nodes[k]);
-        let disagreement = (transforms[j].apply(gj, gk) - transforms[k].apply(gk, gk))
-            .norm()
-            .max((transforms[k].apply(gk, gj) - transforms[j].apply(gj, gj)).norm());
-        if disagreement < threshold {
-            let (a, b) = (root(&mut parent, j), root(&mut parent, k));
-            parent[a.max(b)] = a.min(b);
-        }
-    }
-    (0..graph.nodes.len()).map(|j| root(&mut parent, j) as u32).collect()
+    let hypotheses: Vec<Similarity> = transforms
+        .iter()
+        .zip(&graph.nodes)
+        .map(|(t, g)| Similarity {
+            rotation: t.matrix.cast::<Real>(),
+            translation: (g + t.translation - t.matrix * g).cast::<Real>(),
+            scale: 1.0,
+        })
+        .collect();
+    let prefs = Preferences::of_points(start, deformed, &hypotheses, threshold as Real);
+    cluster_jaccard(&prefs, start.len())
 }
 
 /// NRR of P onto Q: the deformed P and its segments.
@@ -317,8 +316,8 @@ pub fn register_nonrigid_graph(p: &[Point3], q: &[Point3], params: &NrrParams) -
         feature_weight *= params.feature_decay;
     }
     let deformed = graph.deform(&start, &transforms);
-    let node_parts = cluster_nodes(&graph, &transforms, params.segment_threshold);
-    let labels: Vec<u32> = graph.main_node().into_iter().map(|j| node_parts[j]).collect();
+    let labels =
+        cluster_node_transforms(&graph, &transforms, &start, &deformed, params.segment_threshold);
     let min_size = ((params.min_segment_fraction * p.len() as Real).ceil() as usize).max(1);
     let (segments, _) = absorb_small_segments(p, &labels, min_size);
     NrrResult { deformed, segments }
