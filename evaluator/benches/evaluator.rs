@@ -9,22 +9,13 @@ use std::sync::Arc;
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use evaluator::datasets::DatasetSpec;
-use evaluator::pipeline::{evaluate, Options, Progress};
+use evaluator::pipeline::{evaluate, NoProgress, Options};
 use evaluator::reference::OnePart;
 use evaluator::registry::{FlowSource, Registry};
 use evaluator::score::score_pair;
 use generator::config::GeneratorConfig;
 use generator::generate::object_pairs;
 use pairs::{Prediction, Segmenter};
-
-struct Quiet;
-
-impl Progress for Quiet {
-    fn generating(&self, _: &str, _: u64, _: u64) {}
-    fn start(&self, _: &str, _: &str, _: u64) {}
-    fn tick(&self) {}
-    fn finish(&self, _: &str, _: &str, _: bool) {}
-}
 
 fn score_one_pair(c: &mut Criterion) {
     let config = GeneratorConfig::default();
@@ -54,12 +45,12 @@ fn evaluation_overhead(c: &mut Criterion) {
         gallery_pairs: 3,
     };
     // Generate the three datasets once, outside the measurement.
-    evaluate(&registry, &specs, &options, &Quiet).expect("the first evaluation runs");
+    evaluate(&registry, &specs, &options, &NoProgress).expect("the first evaluation runs");
     registry.combine(Arc::new(OnePart), FlowSource::GroundTruth, "bench", None);
     let mut group = c.benchmark_group("evaluation");
     group.sample_size(10);
     group.bench_function("gt + one-part@gt-flow on 3 x 875 pairs, forced", |b| {
-        b.iter(|| evaluate(&registry, &specs, &options, &Quiet).expect("evaluates"))
+        b.iter(|| evaluate(&registry, &specs, &options, &NoProgress).expect("evaluates"))
     });
     group.finish();
 }

@@ -44,6 +44,17 @@ pub trait Progress: Sync {
     fn finish(&self, entry: &str, dataset: &str, cached: bool);
 }
 
+/// Progress hooks that show nothing (tests, benches, library callers).
+#[derive(Debug, Clone, Copy, Default)]
+pub struct NoProgress;
+
+impl Progress for NoProgress {
+    fn generating(&self, _: &str, _: u64, _: u64) {}
+    fn start(&self, _: &str, _: &str, _: u64) {}
+    fn tick(&self) {}
+    fn finish(&self, _: &str, _: &str, _: bool) {}
+}
+
 /// What an evaluation produced.
 pub struct Summary {
     /// The leaderboards as written.

@@ -23,9 +23,14 @@ impl FlowSource {
     pub fn name(&self) -> String {
         match self {
             Self::GroundTruth => "gt-flow".into(),
-            Self::Method(m) => format!("{}-flow", m.name()),
+            Self::Method(m) => method_flow_name(m.name()),
         }
     }
+}
+
+/// The flow source name of a method's flow (`net` -> `net-flow`).
+pub fn method_flow_name(method: &str) -> String {
+    format!("{method}-flow")
 }
 
 /// How the runner gets a prediction for a row.

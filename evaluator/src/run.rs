@@ -19,7 +19,7 @@ use crate::datasets::LoadedDataset;
 use crate::error::EvalError;
 use crate::memory;
 use crate::record::{read_records, write_records, PairRecord, RunTable};
-use crate::registry::{Entry, FlowSource, Runner};
+use crate::registry::{method_flow_name, Entry, FlowSource, Runner};
 use crate::score::score_pair;
 
 /// Version of the runs files; bump it when scoring changes so cached runs are recomputed.
@@ -81,6 +81,15 @@ impl FlowCache {
         let flows = Arc::new(flows);
         self.flows.lock().unwrap_or_else(|e| e.into_inner()).insert(key, flows.clone());
         flows
+    }
+}
+
+impl FlowCache {
+    /// Keeps the flows a whole method's row just predicted, so segmenters on that method's
+    /// flow do not predict it again.
+    fn offer(&self, method: &str, dataset: &str, flows: Vec<Result<Vec<Vector3>, String>>) {
+        let key = (method_flow_name(method), dataset.to_owned());
+        self.flows.lock().unwrap_or_else(|e| e.into_inner()).entry(key).or_insert(Arc::new(flows));
     }
 }
 
@@ -176,7 +185,8 @@ pub fn run_entry(
         Runner::Segmenter { flow, .. } => Some(flows.get(flow, dataset)),
         _ => None,
     };
-    let outcomes: Vec<(PairRecord, Option<Vec<u32>>)> = dataset
+    type Outcome = (PairRecord, Option<Vec<u32>>, Result<Vec<Vector3>, String>);
+    let outcomes: Vec<Outcome> = dataset
         .pairs
         .par_iter()
         .enumerate()
@@ -185,6 +195,10 @@ pub fn run_entry(
             let started = Instant::now();
             let prediction = predict(entry, pair, flow);
             let ms = started.elapsed().as_secs_f64() * 1e3;
+            let own_flow = match &prediction {
+                Ok(p) => p.flow.clone().ok_or_else(|| format!("{} reports no flow", entry.name)),
+                Err(reason) => Err(reason.clone()),
+            };
             let outcome = prediction.and_then(|p| {
                 let scored = score_pair(&p, pair.input(), pair.truth()).map_err(|e| e.to_string());
                 scored.map(|s| (s, p.segments_p))
@@ -201,16 +215,21 @@ pub fn run_entry(
                 ms,
                 outcome,
             };
-            (record, segments.filter(|_| keep))
+            (record, segments.filter(|_| keep), own_flow)
         })
         .collect();
     let mut gallery = BTreeMap::new();
     let mut records = Vec::with_capacity(outcomes.len());
-    for (record, segments) in outcomes {
+    let mut own_flows = Vec::with_capacity(outcomes.len());
+    for (record, segments, own_flow) in outcomes {
         if let Some(segments) = segments {
             gallery.insert(record.pair.clone(), segments);
         }
         records.push(record);
+        own_flows.push(own_flow);
+    }
+    if let Runner::Method(m) = &entry.runner {
+        flows.offer(m.name(), &dataset.name, own_flows);
     }
     let meta = RunMeta {
         version: RUNS_VERSION,

@@ -6,21 +6,12 @@ use std::path::Path;
 use std::sync::Arc;
 
 use evaluator::datasets::DatasetSpec;
-use evaluator::pipeline::{evaluate, Options, Progress, Summary};
+use evaluator::pipeline::{evaluate, NoProgress, Options, Summary};
 use evaluator::reference::OnePart;
 use evaluator::registry::{Board, FlowSource, Registry};
 use generator::config::GeneratorConfig;
 use pairs::math::Vector3;
 use pairs::{Method, MethodError, PairInput, Prediction};
-
-struct Quiet;
-
-impl Progress for Quiet {
-    fn generating(&self, _: &str, _: u64, _: u64) {}
-    fn start(&self, _: &str, _: &str, _: u64) {}
-    fn tick(&self) {}
-    fn finish(&self, _: &str, _: &str, _: bool) {}
-}
 
 /// Fails in three ways, by pair: a short segmentation, a NaN flow, a panic; else one part.
 struct Broken;
@@ -81,7 +72,7 @@ fn run(root: &Path, registry: &Registry) -> Summary {
         force: false,
         gallery_pairs: 1,
     };
-    evaluate(registry, &[spec()], &options, &Quiet).expect("the evaluation runs")
+    evaluate(registry, &[spec()], &options, &NoProgress).expect("the evaluation runs")
 }
 
 fn read(path: &Path) -> String {
@@ -163,7 +154,7 @@ fn unknown_names_are_refused_with_the_known_ones() {
         force: false,
         gallery_pairs: 0,
     };
-    let err = evaluate(&registry("x"), &[spec()], &options, &Quiet).err().expect("refused");
+    let err = evaluate(&registry("x"), &[spec()], &options, &NoProgress).err().expect("refused");
     assert!(err.to_string().contains("unknown dataset \"nope\"; known: tiny"), "{err}");
     let err = registry("x").select(&["seqransac@nowhere".into()]).err().expect("refused");
     assert!(err.to_string().contains("known: gt, one-part@gt-flow, broken"), "{err}");
