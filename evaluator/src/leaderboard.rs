@@ -11,6 +11,7 @@ use pairs::metrics::{PCC_STEP, PCC_THRESHOLDS};
 use polars::prelude::*;
 
 use crate::error::EvalError;
+use crate::files::replace_file;
 use crate::record::{pcc_column, RunTable};
 use crate::registry::{Board, Entry};
 use crate::run::RunResult;
@@ -262,11 +263,11 @@ impl Leaderboards {
 
 /// Writes `frame` as CSV with four decimals (fixed, so reruns are byte-identical).
 pub fn write_csv(path: &Path, frame: &mut DataFrame) -> Result<(), EvalError> {
-    let io = |source| EvalError::Io { path: path.to_path_buf(), source };
-    let mut file = std::fs::File::create(path).map_err(io)?;
-    CsvWriter::new(&mut file)
-        .include_header(true)
-        .with_float_precision(Some(4))
-        .finish(frame)
-        .map_err(|source| EvalError::Table { what: path.display().to_string(), source })
+    replace_file(path, |out| {
+        CsvWriter::new(out)
+            .include_header(true)
+            .with_float_precision(Some(4))
+            .finish(frame)
+            .map_err(|source| EvalError::Table { what: path.display().to_string(), source })
+    })
 }

@@ -22,6 +22,7 @@
 
 pub mod datasets;
 pub mod error;
+pub mod files;
 pub mod gallery;
 pub mod leaderboard;
 pub mod memory;

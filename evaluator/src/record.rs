@@ -6,6 +6,7 @@ use std::path::Path;
 use pairs::metrics::{PCC_STEP, PCC_THRESHOLDS};
 
 use crate::error::EvalError;
+use crate::files::replace_file;
 use crate::score::PairScore;
 
 /// One pair's outcome for one method.
@@ -104,24 +105,18 @@ impl PairRecord {
     }
 }
 
-/// Writes `records` to `path` (atomically: a temporary file renamed into place).
+/// Writes `records` to `path`, replacing an old file only once the new one is complete.
 pub fn write_records(path: &Path, records: &[PairRecord]) -> Result<(), EvalError> {
-    let tmp = path.with_extension("csv.tmp");
-    let io = |source| EvalError::Io { path: tmp.clone(), source };
-    if let Some(dir) = path.parent() {
-        std::fs::create_dir_all(dir)
-            .map_err(|source| EvalError::Io { path: dir.to_path_buf(), source })?;
-    }
-    let mut writer = csv::Writer::from_path(&tmp)
-        .map_err(|e| EvalError::Csv { path: tmp.clone(), message: e.to_string() })?;
-    let csv_err = |e: csv::Error| EvalError::Csv { path: tmp.clone(), message: e.to_string() };
-    writer.write_record(header()).map_err(csv_err)?;
-    for r in records {
-        writer.write_record(r.to_row()).map_err(csv_err)?;
-    }
-    writer.flush().map_err(io)?;
-    drop(writer);
-    std::fs::rename(&tmp, path).map_err(|source| EvalError::Io { path: path.to_path_buf(), source })
+    replace_file(path, |out| {
+        let bad =
+            |e: csv::Error| EvalError::Csv { path: path.to_path_buf(), message: e.to_string() };
+        let mut writer = csv::Writer::from_writer(out);
+        writer.write_record(header()).map_err(bad)?;
+        for r in records {
+            writer.write_record(r.to_row()).map_err(bad)?;
+        }
+        writer.flush().map_err(|source| EvalError::Io { path: path.to_path_buf(), source })
+    })
 }
 
 /// A runs file read back as rows of named string cells (the leaderboard parses the numbers).

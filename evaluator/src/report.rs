@@ -4,11 +4,13 @@
 //! nothing that changes between reruns except through the data.
 
 use std::fmt::Write as _;
+use std::io::Write as _;
 use std::path::Path;
 
 use polars::prelude::{AnyValue, DataFrame};
 
 use crate::error::EvalError;
+use crate::files::replace_file;
 use crate::gallery::GalleryPicture;
 use crate::leaderboard::Leaderboards;
 use crate::paper::{figures_for, FIGURES};
@@ -145,5 +147,8 @@ pub fn write_report(
     out.push_str("## Timings (this machine; not part of the reproducible tables)\n\n");
     table(&mut out, &header(&boards.timings), &cells(&boards.timings));
     let path = dir.join("LEADERBOARD.md");
-    std::fs::write(&path, out).map_err(|source| EvalError::Io { path, source })
+    replace_file(&path, |file| {
+        file.write_all(out.as_bytes())
+            .map_err(|source| EvalError::Io { path: path.clone(), source })
+    })
 }

@@ -5,6 +5,7 @@
 //! dataset's content hash: a run is reused only while both match.
 
 use std::collections::{BTreeMap, HashMap};
+use std::io::Write as _;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
@@ -17,6 +18,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::datasets::LoadedDataset;
 use crate::error::EvalError;
+use crate::files::replace_file;
 use crate::memory;
 use crate::record::{read_records, write_records, PairRecord, RunTable};
 use crate::registry::{method_flow_name, Entry, FlowSource, Runner};
@@ -240,7 +242,10 @@ pub fn run_entry(
     };
     write_records(&path, &records)?;
     let json = serde_json::to_string_pretty(&meta).expect("run metadata serialises");
-    std::fs::write(&meta_path, json).map_err(|source| EvalError::Io { path: meta_path, source })?;
+    replace_file(&meta_path, |out| {
+        out.write_all(json.as_bytes())
+            .map_err(|source| EvalError::Io { path: meta_path.clone(), source })
+    })?;
     let table = RunTable {
         header: crate::record::header(),
         rows: records.iter().map(PairRecord::to_row).collect(),
