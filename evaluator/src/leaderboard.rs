@@ -60,13 +60,14 @@ fn numbers(table: &RunTable, name: &str) -> Vec<Option<f64>> {
 }
 
 /// Numeric per-pair columns summed by the leaderboards.
-const SUMMED: [&str; 13] = [
+const SUMMED: [&str; 14] = [
     "epe",
     "ri",
     "iou_sum",
     "parts",
     "ri_q",
     "iou_q_sum",
+    "parts_q",
     "matched",
     "rotation_sum",
     "translation_sum",
@@ -80,7 +81,7 @@ const SUMMED: [&str; 13] = [
 fn pairs_frame(runs: &[Scored], keep: impl Fn(Board) -> bool) -> Result<DataFrame, EvalError> {
     let runs: Vec<&Scored> = runs.iter().filter(|r| keep(r.entry.board)).collect();
     let mut keys: [Vec<String>; 3] = Default::default();
-    let mut columns: Vec<Vec<Option<f64>>> = vec![Vec::new(); SUMMED.len() + 2 + PCC_THRESHOLDS];
+    let mut columns: Vec<Vec<Option<f64>>> = vec![Vec::new(); SUMMED.len() + 1 + PCC_THRESHOLDS];
     for run in runs {
         let table = &run.result.table;
         let n = table.rows.len();
@@ -106,15 +107,14 @@ fn pairs_frame(runs: &[Scored], keep: impl Fn(Board) -> bool) -> Result<DataFram
             columns[c].extend(values);
         }
         columns[SUMMED.len()].extend(has_q.iter().copied());
-        columns[SUMMED.len() + 1].extend(has_q.iter().zip(&parts).map(|(q, p)| q.and(*p)));
         for k in 0..PCC_THRESHOLDS {
-            columns[SUMMED.len() + 2 + k].extend(numbers(table, &pcc_column(k)));
+            columns[SUMMED.len() + 1 + k].extend(numbers(table, &pcc_column(k)));
         }
     }
     let names = SUMMED
         .iter()
         .map(|s| s.to_string())
-        .chain(["has_q".to_string(), "parts_q".to_string()])
+        .chain(["has_q".to_string()])
         .chain((0..PCC_THRESHOLDS).map(pcc_column));
     let mut frame: Vec<Column> = ["dataset", "method", "flow_source"]
         .iter()

@@ -32,7 +32,7 @@ struct Args {
     /// Only these datasets (comma-separated names, see --list).
     #[arg(long, value_delimiter = ',')]
     datasets: Vec<String>,
-    /// Only the first N pairs of each dataset.
+    /// Only the first N pairs of each dataset (reports go to <reports>/limit-N/).
     #[arg(long, value_name = "N")]
     limit: Option<usize>,
     /// Recompute runs even when reports/runs holds a matching one.
@@ -142,7 +142,7 @@ fn run(args: Args) -> Result<()> {
         summary.cached,
         summary.failed,
         started.elapsed().as_secs_f64(),
-        options.reports.display()
+        summary.reports.display()
     );
     Ok(())
 }

@@ -1,6 +1,9 @@
 //! The whole evaluation: make missing datasets, load them, run every selected row on every
 //! selected dataset (reusing matching cached runs), then write the leaderboards, plots,
-//! gallery and `LEADERBOARD.md` under the reports folder.
+//! gallery and `LEADERBOARD.md` under the reports folder. Rows not selected still appear
+//! in the tables when their cached runs match, so recomputing one row keeps the others; a
+//! run limited to the first N pairs writes under `<reports>/limit-<N>/` and leaves the
+//! full-dataset reports alone.
 
 use std::path::PathBuf;
 
@@ -9,9 +12,9 @@ use crate::error::EvalError;
 use crate::gallery::{write_picture, GalleryPicture};
 use crate::leaderboard::{Leaderboards, Scored};
 use crate::plots::write_pcc_plots;
-use crate::registry::{Board, Entry, Registry};
+use crate::registry::{Board, Registry};
 use crate::report::write_report;
-use crate::run::{run_entry, FlowCache, RunOptions, RunResult};
+use crate::run::{cached_run, run_entry, FlowCache, RunOptions, RunResult};
 
 /// What to evaluate and where.
 #[derive(Debug, Clone)]
@@ -20,7 +23,7 @@ pub struct Options {
     pub datasets: Vec<String>,
     /// Rows by name (empty: every registered row).
     pub methods: Vec<String>,
-    /// Only the first pairs of each dataset.
+    /// Only the first pairs of each dataset (reports then go to `<reports>/limit-<N>`).
     pub limit: Option<usize>,
     /// Folder holding the dataset folders (`datasets`).
     pub datasets_root: PathBuf,
@@ -63,8 +66,10 @@ pub struct Summary {
     pub fresh: usize,
     /// Rows reused from the cache.
     pub cached: usize,
-    /// Failed pairs over all rows.
+    /// Failed pairs over all rows in the tables.
     pub failed: usize,
+    /// Where the reports were written.
+    pub reports: PathBuf,
 }
 
 /// Runs the evaluation described by `options` over `registry`'s rows and `specs`' datasets.
@@ -74,7 +79,7 @@ pub fn evaluate(
     options: &Options,
     progress: &dyn Progress,
 ) -> Result<Summary, EvalError> {
-    let selected: Vec<&DatasetSpec> = if options.datasets.is_empty() {
+    let selected_specs: Vec<&DatasetSpec> = if options.datasets.is_empty() {
         specs.iter().collect()
     } else {
         options
@@ -89,20 +94,33 @@ pub fn evaluate(
             })
             .collect::<Result<_, _>>()?
     };
-    let entries = registry.select(&options.methods)?;
-    let mut loaded: Vec<LoadedDataset> = Vec::new();
-    for spec in &selected {
-        ensure_dataset(spec, &options.datasets_root, |done, total| {
-            progress.generating(&spec.name, done, total)
-        })?;
-        loaded.push(load_dataset(&spec.name, &spec.dir(&options.datasets_root), options.limit)?);
+    let selected = registry.select(&options.methods)?;
+    let entries = registry.entries();
+    let reports = match options.limit {
+        Some(n) => options.reports.join(format!("limit-{n}")),
+        None => options.reports.clone(),
+    };
+    // Selected datasets are made when missing; the others join the tables from the cache
+    // when they exist on disk.
+    let mut loaded: Vec<(LoadedDataset, bool)> = Vec::new();
+    for spec in specs {
+        let chosen = selected_specs.iter().any(|s| s.name == spec.name);
+        let dir = spec.dir(&options.datasets_root);
+        if chosen {
+            ensure_dataset(spec, &options.datasets_root, |done, total| {
+                progress.generating(&spec.name, done, total)
+            })?;
+        } else if !dir.join(pairs::dataset::MANIFEST_FILE).exists() {
+            continue;
+        }
+        loaded.push((load_dataset(&spec.name, &dir, options.limit)?, chosen));
     }
     let flows = FlowCache::default();
     let mut results: Vec<(usize, usize, RunResult)> = Vec::new();
     let (mut fresh, mut cached) = (0, 0);
-    for (d, dataset) in loaded.iter().enumerate() {
+    for (d, (dataset, chosen)) in loaded.iter().enumerate() {
         let run_options = RunOptions {
-            runs: options.reports.join("runs"),
+            runs: reports.join("runs"),
             force: options.force,
             gallery: dataset
                 .pairs
@@ -112,6 +130,12 @@ pub fn evaluate(
                 .collect(),
         };
         for (e, entry) in entries.iter().enumerate() {
+            if !chosen || !selected.iter().any(|s| s.name == entry.name) {
+                if let Some(result) = cached_run(entry, dataset, &run_options) {
+                    results.push((d, e, result));
+                }
+                continue;
+            }
             progress.start(&entry.name, &dataset.name, dataset.pairs.len() as u64);
             let result = run_entry(entry, dataset, &flows, &run_options, &|| progress.tick())?;
             progress.finish(&entry.name, &dataset.name, result.cached);
@@ -125,37 +149,37 @@ pub fn evaluate(
     }
     let scored: Vec<Scored> = results
         .iter()
-        .map(|(d, e, result)| Scored { dataset: &loaded[*d].name, entry: &entries[*e], result })
+        .map(|(d, e, result)| Scored { dataset: &loaded[*d].0.name, entry: &entries[*e], result })
         .collect();
     let failed = scored
         .iter()
         .map(|s| s.result.table.rows.iter().filter(|r| !r[2].is_empty()).count())
         .sum();
-    std::fs::create_dir_all(&options.reports)
-        .map_err(|source| EvalError::Io { path: options.reports.clone(), source })?;
+    std::fs::create_dir_all(&reports)
+        .map_err(|source| EvalError::Io { path: reports.clone(), source })?;
     let mut boards = Leaderboards::build(&scored)?;
-    boards.write(&options.reports)?;
-    write_pcc_plots(&options.reports, &boards.curves)?;
-    let gallery = write_gallery(options, &loaded, &entries, &scored)?;
-    write_report(&options.reports, &boards, &gallery)?;
-    Ok(Summary { boards, fresh, cached, failed })
+    boards.write(&reports)?;
+    write_pcc_plots(&reports, &boards.curves)?;
+    let datasets: Vec<&LoadedDataset> = loaded.iter().map(|(d, _)| d).collect();
+    let gallery = write_gallery(&reports, options.gallery_pairs, &datasets, &scored)?;
+    write_report(&reports, &boards, &gallery)?;
+    Ok(Summary { boards, fresh, cached, failed, reports })
 }
 
 /// One picture per gallery pair and dataset, with a panel per segmentation row.
 fn write_gallery(
-    options: &Options,
-    loaded: &[LoadedDataset],
-    entries: &[Entry],
+    reports: &std::path::Path,
+    gallery_pairs: usize,
+    loaded: &[&LoadedDataset],
     scored: &[Scored],
 ) -> Result<Vec<GalleryPicture>, EvalError> {
-    let dir = options.reports.join("gallery").join("segmentation");
+    let dir = reports.join("gallery").join("segmentation");
     let mut pictures = Vec::new();
     for dataset in loaded {
-        for pair in dataset.pairs.iter().take(options.gallery_pairs) {
+        for pair in dataset.pairs.iter().take(gallery_pairs) {
             let rows: Vec<(String, Vec<u32>)> = scored
                 .iter()
                 .filter(|s| s.dataset == dataset.name && s.entry.board != Board::Flow)
-                .filter(|s| entries.iter().any(|e| e.name == s.entry.name))
                 .filter_map(|s| {
                     let segments = s.result.meta.gallery.get(pair.id())?;
                     Some((s.entry.name.clone(), segments.clone()))

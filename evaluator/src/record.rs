@@ -24,7 +24,7 @@ pub struct PairRecord {
 
 /// Columns before the PCC curve; the curve follows as `pcc_000` .. `pcc_250` (threshold in
 /// thousandths).
-const FIXED: [&str; 16] = [
+const FIXED: [&str; 17] = [
     "pair",
     "category",
     "failed",
@@ -36,6 +36,7 @@ const FIXED: [&str; 16] = [
     "segments",
     "ri_q",
     "iou_q_sum",
+    "parts_q",
     "matched",
     "rotation_sum",
     "translation_sum",
@@ -89,6 +90,7 @@ impl PairRecord {
                     s.segments.to_string(),
                     opt(s.q.as_ref().map(|q| q.rand_index)),
                     opt(s.q.as_ref().map(|q| q.iou_sum)),
+                    s.q.as_ref().map(|q| q.parts.to_string()).unwrap_or_default(),
                     s.rotation_deg.len().to_string(),
                     num(sum(&s.rotation_deg)),
                     num(sum(&s.translation)),

@@ -70,8 +70,8 @@ pub struct Entry {
     pub runner: Runner,
     /// Which leaderboards list it.
     pub board: Board,
-    /// Identifies the method's code, parameters and weights: cached results made with
-    /// another fingerprint are recomputed.
+    /// Identifies the method's code (a hash of its crates' source), parameters and weights:
+    /// cached results made with another fingerprint are recomputed.
     pub fingerprint: String,
 }
 

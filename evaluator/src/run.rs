@@ -25,7 +25,7 @@ use crate::registry::{method_flow_name, Entry, FlowSource, Runner};
 use crate::score::score_pair;
 
 /// Version of the runs files; bump it when scoring changes so cached runs are recomputed.
-pub const RUNS_VERSION: u32 = 1;
+pub const RUNS_VERSION: u32 = 2;
 
 /// What is stored beside a runs file.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -159,7 +159,27 @@ pub struct RunOptions {
     pub gallery: Vec<String>,
 }
 
-/// Runs `entry` on `dataset` (or reuses its cached run), calling `progress` once per pair.
+/// The cached run of `entry` on `dataset`, if one matches: same runs version, fingerprint and
+/// dataset hash, one row per pair, and every requested gallery pair saved (or failed).
+pub fn cached_run(
+    entry: &Entry,
+    dataset: &LoadedDataset,
+    options: &RunOptions,
+) -> Option<RunResult> {
+    let path = runs_path(&options.runs, &dataset.name, &entry.name);
+    let meta = read_meta(&path.with_extension("json")).filter(|m| {
+        m.version == RUNS_VERSION
+            && m.fingerprint == entry.fingerprint
+            && m.dataset == dataset.content_hash
+    })?;
+    let table = read_records(&path).ok().filter(|t| t.rows.len() == dataset.pairs.len())?;
+    let failed = |id: &String| table.rows.iter().any(|r| &r[0] == id && !r[2].is_empty());
+    let complete = options.gallery.iter().all(|id| meta.gallery.contains_key(id) || failed(id));
+    complete.then_some(RunResult { table, meta, cached: true })
+}
+
+/// Runs `entry` on `dataset` (or reuses its cached run unless `force`), calling `progress`
+/// once per pair.
 pub fn run_entry(
     entry: &Entry,
     dataset: &LoadedDataset,
@@ -167,26 +187,19 @@ pub fn run_entry(
     options: &RunOptions,
     progress: &(dyn Fn() + Sync),
 ) -> Result<RunResult, EvalError> {
-    let path = runs_path(&options.runs, &dataset.name, &entry.name);
-    let meta_path = path.with_extension("json");
     if !options.force {
-        if let Some(meta) = read_meta(&meta_path).filter(|m| {
-            m.version == RUNS_VERSION
-                && m.fingerprint == entry.fingerprint
-                && m.dataset == dataset.content_hash
-        }) {
-            if let Ok(table) = read_records(&path) {
-                if table.rows.len() == dataset.pairs.len() {
-                    return Ok(RunResult { table, meta, cached: true });
-                }
-            }
+        if let Some(cached) = cached_run(entry, dataset, options) {
+            return Ok(cached);
         }
     }
-    memory::reset_peak();
+    let path = runs_path(&options.runs, &dataset.name, &entry.name);
+    let meta_path = path.with_extension("json");
+    // The flow source runs before the memory reset: its cost is its own row's.
     let source_flows = match &entry.runner {
         Runner::Segmenter { flow, .. } => Some(flows.get(flow, dataset)),
         _ => None,
     };
+    memory::reset_peak();
     type Outcome = (PairRecord, Option<Vec<u32>>, Result<Vec<Vector3>, String>);
     let outcomes: Vec<Outcome> = dataset
         .pairs
@@ -202,7 +215,9 @@ pub fn run_entry(
                 Err(reason) => Err(reason.clone()),
             };
             let outcome = prediction.and_then(|p| {
-                let scored = score_pair(&p, pair.input(), pair.truth()).map_err(|e| e.to_string());
+                let scored = guarded(|| {
+                    score_pair(&p, pair.input(), pair.truth()).map_err(|e| e.to_string())
+                });
                 scored.map(|s| (s, p.segments_p))
             });
             progress();
@@ -240,6 +255,11 @@ pub fn run_entry(
         peak_mib: memory::peak_mib(),
         gallery,
     };
+    // The old sidecar goes first: new results never sit beside an old fingerprint.
+    if meta_path.exists() {
+        std::fs::remove_file(&meta_path)
+            .map_err(|source| EvalError::Io { path: meta_path.clone(), source })?;
+    }
     write_records(&path, &records)?;
     let json = serde_json::to_string_pretty(&meta).expect("run metadata serialises");
     replace_file(&meta_path, |out| {

@@ -100,6 +100,8 @@ pub struct SegmentScore {
     /// Sum of the matched IoUs over the side's ground-truth parts (the dataset IoU is the
     /// sum over pairs divided by the number of parts over pairs).
     pub iou_sum: f64,
+    /// Ground-truth parts of the side (the IoU's denominator).
+    pub parts: u32,
 }
 
 /// Everything scored on one pair.
@@ -140,13 +142,16 @@ pub fn score_pair(
     let p = SegmentScore {
         rand_index: rand_index(&prediction.segments_p, &truth.part_p)?,
         iou_sum: matching.iou.iter().sum(),
+        parts: matching.iou.len() as u32,
     };
     let q = if prediction.segments_q.is_empty() {
         None
     } else {
+        let q_matching = matched_iou(&prediction.segments_q, &truth.part_q)?;
         Some(SegmentScore {
             rand_index: rand_index(&prediction.segments_q, &truth.part_q)?,
-            iou_sum: matched_iou(&prediction.segments_q, &truth.part_q)?.iou.iter().sum(),
+            iou_sum: q_matching.iou.iter().sum(),
+            parts: q_matching.iou.len() as u32,
         })
     };
     let motion = motion_errors(&matching, &prediction.motions, &truth.motions);

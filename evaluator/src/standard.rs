@@ -24,13 +24,22 @@ use crate::registry::{Board, FlowSource, Registry};
 /// The shipped weights the default rows use (a folder with `config.toml` and `model.bpk`).
 pub const DEFAULT_WEIGHTS: &str = "model/weights/cpu";
 
-/// Fingerprint of a method from its parameters (its `Debug` form) and the workspace version:
-/// changing a parameter recomputes the method's rows.
+/// Hash of the source of `pairs` and `baselines` (see `build.rs`).
+const BASELINES_CODE: &str =
+    concat!("pairs ", env!("SOURCE_HASH_PAIRS"), " baselines ", env!("SOURCE_HASH_BASELINES"));
+
+/// Hash of the source of `pairs` and `model`.
+const MODEL_CODE: &str =
+    concat!("pairs ", env!("SOURCE_HASH_PAIRS"), " model ", env!("SOURCE_HASH_MODEL"));
+
+/// Fingerprint of a method from its parameters (its `Debug` form) and the source hash of the
+/// code that runs it: changing either recomputes the method's rows.
 fn fingerprint(method: &impl Debug) -> String {
-    format!("{method:?} v{}", env!("CARGO_PKG_VERSION"))
+    format!("{method:?} {BASELINES_CODE}")
 }
 
-/// The network as a method, with the sha256 of its config and weights as fingerprint.
+/// The network as a method; its fingerprint is the sha256 of its config and weights and the
+/// source hash of the code that runs it.
 pub fn load_network(weights: &Path) -> Result<(Arc<dyn Method>, String), EvalError> {
     let (config_path, model_path) = (weights.join("config.toml"), weights.join("model.bpk"));
     let fail = |path: &PathBuf, message: String| EvalError::Weights { path: path.clone(), message };
@@ -43,7 +52,7 @@ pub fn load_network(weights: &Path) -> Result<(Arc<dyn Method>, String), EvalErr
         let bytes = std::fs::read(path).map_err(|e| fail(path, e.to_string()))?;
         hash.update(&bytes);
     }
-    let fingerprint = format!("net {:x}", hash.finalize());
+    let fingerprint = format!("net {:x} {MODEL_CODE}", hash.finalize());
     Ok((Arc::new(NetworkMethod::new("net", net)), fingerprint))
 }
 

@@ -63,10 +63,19 @@ fn registry(one_part_fingerprint: &str) -> Registry {
 }
 
 fn run(root: &Path, registry: &Registry) -> Summary {
+    run_narrowed(root, registry, &[], None)
+}
+
+fn run_narrowed(
+    root: &Path,
+    registry: &Registry,
+    methods: &[&str],
+    limit: Option<usize>,
+) -> Summary {
     let options = Options {
         datasets: Vec::new(),
-        methods: Vec::new(),
-        limit: None,
+        methods: methods.iter().map(|m| m.to_string()).collect(),
+        limit,
         datasets_root: root.join("datasets"),
         reports: root.join("reports"),
         force: false,

@@ -100,14 +100,28 @@ pub fn matched_iou(predicted: &[u32], truth: &[u8]) -> Result<PartMatching, Metr
             inter as f64 / union as f64
         }
     };
+    // Only each part's `parts` best segments can be in an optimal matching (any other
+    // match could be swapped for one of them that no other part uses), so the Hungarian
+    // table stays K x K^2 even when a method returns one segment per point.
+    let mut candidates: Vec<usize> = (0..parts)
+        .flat_map(|row| {
+            let mut cols: Vec<usize> =
+                (0..segments.len()).filter(|&col| overlap[row][col] > 0).collect();
+            cols.sort_by(|&a, &b| iou(row, b).total_cmp(&iou(row, a)).then(a.cmp(&b)));
+            cols.truncate(parts);
+            cols
+        })
+        .collect();
+    candidates.sort_unstable();
+    candidates.dedup();
     let scores: Vec<f64> = (0..parts)
-        .flat_map(|row| (0..segments.len()).map(move |col| (row, col)))
+        .flat_map(|row| candidates.iter().map(move |&col| (row, col)))
         .map(|(r, c)| iou(r, c))
         .collect();
-    let assignment = max_assignment(&scores, parts, segments.len());
+    let assignment = max_assignment(&scores, parts, candidates.len());
     let mut matching = PartMatching { segment: vec![None; parts], iou: vec![0.0; parts] };
     for (row, col) in assignment.into_iter().enumerate() {
-        if let Some(col) = col.filter(|&col| overlap[row][col] > 0) {
+        if let Some(col) = col.map(|c| candidates[c]).filter(|&col| overlap[row][col] > 0) {
             matching.segment[row] = Some(segments[col]);
             matching.iou[row] = iou(row, col);
         }
@@ -126,6 +140,15 @@ mod tests {
         assert_eq!(rand_index(&[5, 7, 7, 7], &[0, 0, 1, 1]).expect("ri"), 0.5);
         assert_eq!(rand_index(&[9, 9, 4, 4], &[0, 0, 1, 1]).expect("ri"), 1.0);
         assert_eq!(rand_index(&[0, 0, 0, 0], &[0, 0, 1, 1]).expect("ri"), 2.0 / 6.0);
+    }
+
+    #[test]
+    fn one_segment_per_point_is_matched_quickly_and_correctly() {
+        // 2048 singleton segments: every part matches one of its points, IoU 1 / size.
+        let truth: Vec<u8> = (0..2048).map(|i| (i % 4) as u8).collect();
+        let predicted: Vec<u32> = (0..2048).collect();
+        let m = matched_iou(&predicted, &truth).expect("iou");
+        assert_eq!(m.iou, vec![1.0 / 512.0; 4]);
     }
 
     #[test]
