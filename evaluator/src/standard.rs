@@ -1,5 +1,5 @@
 //! The default registry of `--all`: the `gt` oracle, the network (`net`) from the shipped
-//! weights, `one-part` (one rigid part on nearest-neighbour flow), NRR and the flow baselines,
+//! weights and its segmentation module on the true flow (`net-seg@gt-flow`), `one-part` (one rigid part on nearest-neighbour flow), NRR and the flow baselines,
 //! and every segmentation baseline on the ground-truth flow (oracle rows) and on the
 //! network's flow (the paper's protocol).
 
@@ -13,7 +13,8 @@ use baselines::{
 use burn::prelude::Device;
 use model::checkpoint::load_weights;
 use model::config::TrainConfig;
-use model::predict::NetworkMethod;
+use model::network::PartNet;
+use model::predict::{NetworkMethod, NetworkSegmenter};
 use pairs::{Method, Segmenter};
 use sha2::{Digest, Sha256};
 
@@ -38,9 +39,9 @@ fn fingerprint(method: &impl Debug) -> String {
     format!("{method:?} {BASELINES_CODE}")
 }
 
-/// The network as a method; its fingerprint is the sha256 of its config and weights and the
+/// The network of `weights`; its fingerprint is the sha256 of its config and weights and the
 /// source hash of the code that runs it.
-pub fn load_network(weights: &Path) -> Result<(Arc<dyn Method>, String), EvalError> {
+pub fn load_network(weights: &Path) -> Result<(PartNet, String), EvalError> {
     let (config_path, model_path) = (weights.join("config.toml"), weights.join("model.bpk"));
     let fail = |path: &PathBuf, message: String| EvalError::Weights { path: path.clone(), message };
     let config = TrainConfig::load(&config_path.to_string_lossy())
@@ -53,7 +54,7 @@ pub fn load_network(weights: &Path) -> Result<(Arc<dyn Method>, String), EvalErr
         hash.update(&bytes);
     }
     let fingerprint = format!("net {:x} {MODEL_CODE}", hash.finalize());
-    Ok((Arc::new(NetworkMethod::new("net", net)), fingerprint))
+    Ok((net, fingerprint))
 }
 
 /// A whole method and its fingerprint.
@@ -71,6 +72,8 @@ fn segmenter<S: Segmenter + Debug + 'static>(segmenter: S) -> (Arc<dyn Segmenter
 /// The default rows, with the network loaded from `weights`.
 pub fn standard_registry(weights: &Path) -> Result<Registry, EvalError> {
     let (net, net_fingerprint) = load_network(weights)?;
+    let net_segmenter: Arc<dyn Segmenter> = Arc::new(NetworkSegmenter::new("net-seg", net.clone()));
+    let net: Arc<dyn Method> = Arc::new(NetworkMethod::new("net", net));
     let (nearest, nearest_fingerprint) = whole(NearestFlow);
     let mut registry = Registry::new();
     registry.oracle();
@@ -92,6 +95,7 @@ pub fn standard_registry(weights: &Path) -> Result<Registry, EvalError> {
     ] {
         registry.method(method, Board::Flow, &fingerprint);
     }
+    registry.combine(net_segmenter, FlowSource::GroundTruth, &net_fingerprint, None);
     let sources = [
         (FlowSource::GroundTruth, "ground truth".to_owned()),
         (FlowSource::Method(net), net_fingerprint),

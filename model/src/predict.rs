@@ -2,13 +2,14 @@
 //! interpolated from the correspondence subset to every point of P, RPEN segments until the
 //! continuation score drops below one half, hard labels by argmax, one rigid motion per
 //! segment fitted to the flow (`pairs::segments`), and Q labelled by its nearest moved point of P.
-//! The iterative refinement of the paper is not part of this pass.
+//! The iterative refinement of the paper is not part of this pass. The segmentation half
+//! also runs alone on any given flow ([`PartNet::segment_flow`], [`NetworkSegmenter`]).
 
 use burn::prelude::*;
 use burn::tensor::activation;
 use pairs::math::{Matrix3, Vector3};
 use pairs::segments::{compact_labels, fit_segment_motions, transfer_labels};
-use pairs::{Method, MethodError, PairInput, Prediction};
+use pairs::{Method, MethodError, PairInput, Prediction, Segmenter};
 
 use crate::batch::{points_tensor, Prepared};
 use crate::network::PartNet;
@@ -46,17 +47,56 @@ impl PartNet {
         let (p_m, q_m) = (prep.p_points(), prep.q_points());
         let p = points_tensor(std::slice::from_ref(&p_m), &device);
         let q = points_tensor(&[q_m], &device);
-        let out = self.flow(p.clone(), q)?;
+        let out = self.flow(p, q)?;
         let mask = floats(activation::sigmoid(out.correspondence.mask_logits));
-        let seg = self.segment(p, out.flow.clone(), self.max_segments())?;
+        let subset_flow = floats(out.flow);
+        let flow = interpolate(&prep.p, &p_m, &subset_flow, 3)?;
+        let flow: Vec<Vector3> = flow.chunks(3).map(|f| Vector3::new(f[0], f[1], f[2])).collect();
+        let mut prediction = self.segment_prepared(input, &prep, &subset_flow, &flow)?;
+        prediction.flow = Some(flow);
+        prediction.corr_mask = Some(interpolate(&prep.p, &p_m, &mask, 1)?);
+        Ok(prediction)
+    }
+
+    /// The segmentation module alone on a given flow of P (one vector per point, Q's
+    /// normalised units): the network as one more segmenter over any flow source. The
+    /// prediction reports no flow of its own.
+    pub fn segment_flow(
+        &self,
+        input: &PairInput,
+        flow: &[Vector3],
+    ) -> Result<Prediction, SamplingError> {
+        let prep = Prepared::new(input, self.corr_points(), &Matrix3::identity())?;
+        let subset_flow: Vec<f32> = prep
+            .p_subset
+            .iter()
+            .flat_map(|&i| flow.get(i).map_or([0.0; 3], |f| [f.x, f.y, f.z]))
+            .collect();
+        self.segment_prepared(input, &prep, &subset_flow, flow)
+    }
+
+    /// RPEN segments of the subset (flow `subset_flow`, row-major `[m, 3]`) until the
+    /// continuation score drops below one half, spread to every point, with motions fitted
+    /// to `flow` and Q labelled through them.
+    fn segment_prepared(
+        &self,
+        input: &PairInput,
+        prep: &Prepared,
+        subset_flow: &[f32],
+        flow: &[Vector3],
+    ) -> Result<Prediction, SamplingError> {
+        let device = self.devices().into_iter().next().unwrap_or_else(Device::flex);
+        let p_m = prep.p_points();
+        let p = points_tensor(std::slice::from_ref(&p_m), &device);
+        let m = p_m.len();
+        let f = Tensor::<1>::from_floats(subset_flow, &device).reshape([1, m, 3]); // [1, m, 3]
+        let seg = self.segment(p, f, self.max_segments())?;
         let segments = seg.segments.expect("max_segments is at least 1");
         let steps = self.max_segments();
         let go_on = floats(segments.continuation);
         let kept = go_on.iter().position(|&r| r < 0.0).map_or(steps, |t| t + 1);
         let s = self.seg_points();
         let y = floats(segments.segments.swap_dims(1, 2)); // [s, steps] row-major
-        let flow = interpolate(&prep.p, &p_m, &floats(out.flow), 3)?;
-        let corr_mask = interpolate(&prep.p, &p_m, &mask, 1)?;
         let probs = interpolate(&prep.p, &p_m[..s], &y, steps)?;
         let raw: Vec<usize> = probs
             .chunks(steps)
@@ -71,17 +111,16 @@ impl PartNet {
                 order.push(r);
             }
         }
-        let flow: Vec<Vector3> = flow.chunks(3).map(|f| Vector3::new(f[0], f[1], f[2])).collect();
-        let motions = fit_segment_motions(&input.p.points, &flow, &segments_p);
+        let motions = fit_segment_motions(&input.p.points, flow, &segments_p);
         let segments_q = transfer_labels(&input.p.points, &segments_p, &motions, &input.q.points);
         let segment_probs =
             probs.chunks(steps).map(|row| order.iter().map(|&o| row[o]).collect()).collect();
         Ok(Prediction {
-            flow: Some(flow),
+            flow: None,
             segments_p,
             segments_q,
             motions,
-            corr_mask: Some(corr_mask),
+            corr_mask: None,
             segment_probs: Some(segment_probs),
         })
     }
@@ -109,5 +148,35 @@ impl Method for NetworkMethod {
     fn predict(&self, input: &PairInput) -> Result<Prediction, MethodError> {
         let net = self.net.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
         net.predict(input).map_err(|e| MethodError::new(&self.name, &input.id, e))
+    }
+}
+
+/// The network's segmentation module as a [`Segmenter`] over any flow (`net-seg@gt-flow`:
+/// the module on the true flow, the oracle row beside the classical segmenters').
+#[derive(Debug)]
+pub struct NetworkSegmenter {
+    name: String,
+    net: std::sync::Mutex<PartNet>,
+}
+
+impl NetworkSegmenter {
+    /// Wraps a network under a leaderboard name.
+    pub fn new(name: impl Into<String>, net: PartNet) -> Self {
+        Self { name: name.into(), net: std::sync::Mutex::new(net) }
+    }
+}
+
+impl Segmenter for NetworkSegmenter {
+    fn name(&self) -> &str {
+        &self.name
+    }
+
+    fn segment(&self, input: &PairInput, flow: &[Vector3]) -> Result<Prediction, MethodError> {
+        if flow.len() != input.p.len() {
+            let msg = format!("flow has {} vectors for {} points", flow.len(), input.p.len());
+            return Err(MethodError::new(&self.name, &input.id, msg));
+        }
+        let net = self.net.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
+        net.segment_flow(input, flow).map_err(|e| MethodError::new(&self.name, &input.id, e))
     }
 }

@@ -1,5 +1,6 @@
 //! Properties of the network: save/load and resume are bit-identical, per-point outputs
-//! follow a permutation of P, and degenerate clouds give errors or finite outputs.
+//! follow a permutation of P, degenerate clouds give errors or finite outputs, and the
+//! segmentation module alone on the network's flow agrees with the whole network.
 
 use burn::prelude::*;
 use generator::config::GeneratorConfig;
@@ -128,4 +129,18 @@ fn degenerate_clouds_give_errors_or_finite_outputs() {
     let mut bad = input.clone();
     bad.q.points[5].x = f32::NAN;
     assert_eq!(net.predict(&bad).expect_err("NaN"), SamplingError::NotFinite(5));
+}
+
+#[test]
+fn the_segmentation_module_on_the_networks_own_flow_predicts_like_the_network() {
+    let config = tiny();
+    let net = fresh_net(&config);
+    for pair in some_pairs(&config, 2) {
+        let whole = net.predict(pair.input()).expect("predicts");
+        let flow = whole.flow.clone().expect("the network reports its flow");
+        let alone = net.segment_flow(pair.input(), &flow).expect("segments");
+        assert_eq!(alone.segments_p, whole.segments_p);
+        assert_eq!(alone.segments_q, whole.segments_q);
+        assert!(alone.flow.is_none());
+    }
 }
