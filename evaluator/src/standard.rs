@@ -14,7 +14,7 @@ use burn::prelude::Device;
 use model::checkpoint::load_weights;
 use model::config::TrainConfig;
 use model::network::PartNet;
-use model::predict::{NetworkMethod, NetworkSegmenter};
+use model::predict::NetworkMethod;
 use pairs::{Method, Segmenter};
 use sha2::{Digest, Sha256};
 
@@ -72,7 +72,7 @@ fn segmenter<S: Segmenter + Debug + 'static>(segmenter: S) -> (Arc<dyn Segmenter
 /// The default rows, with the network loaded from `weights`.
 pub fn standard_registry(weights: &Path) -> Result<Registry, EvalError> {
     let (net, net_fingerprint) = load_network(weights)?;
-    let net_segmenter: Arc<dyn Segmenter> = Arc::new(NetworkSegmenter::new("net-seg", net.clone()));
+    let net_segmenter: Arc<dyn Segmenter> = Arc::new(NetworkMethod::new("net-seg", net.clone()));
     let net: Arc<dyn Method> = Arc::new(NetworkMethod::new("net", net));
     let (nearest, nearest_fingerprint) = whole(NearestFlow);
     let mut registry = Registry::new();

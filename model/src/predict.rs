@@ -3,7 +3,8 @@
 //! continuation score drops below one half, hard labels by argmax, one rigid motion per
 //! segment fitted to the flow (`pairs::segments`), and Q labelled by its nearest moved point of P.
 //! The iterative refinement of the paper is not part of this pass. The segmentation half
-//! also runs alone on any given flow ([`PartNet::segment_flow`], [`NetworkSegmenter`]).
+//! also runs alone on any given flow ([`PartNet::segment_flow`], the [`Segmenter`] side of
+//! [`NetworkMethod`]).
 
 use burn::prelude::*;
 use burn::tensor::activation;
@@ -126,7 +127,9 @@ impl PartNet {
     }
 }
 
-/// The network as a [`Method`] for the evaluator: one forward pass per pair.
+/// The network for the evaluator: as a [`Method`], one forward pass per pair; as a
+/// [`Segmenter`], its segmentation module alone on a given flow (`net-seg@gt-flow`: the
+/// module on the true flow, the oracle row beside the classical segmenters').
 #[derive(Debug)]
 pub struct NetworkMethod {
     name: String,
@@ -151,22 +154,7 @@ impl Method for NetworkMethod {
     }
 }
 
-/// The network's segmentation module as a [`Segmenter`] over any flow (`net-seg@gt-flow`:
-/// the module on the true flow, the oracle row beside the classical segmenters').
-#[derive(Debug)]
-pub struct NetworkSegmenter {
-    name: String,
-    net: std::sync::Mutex<PartNet>,
-}
-
-impl NetworkSegmenter {
-    /// Wraps a network under a leaderboard name.
-    pub fn new(name: impl Into<String>, net: PartNet) -> Self {
-        Self { name: name.into(), net: std::sync::Mutex::new(net) }
-    }
-}
-
-impl Segmenter for NetworkSegmenter {
+impl Segmenter for NetworkMethod {
     fn name(&self) -> &str {
         &self.name
     }
