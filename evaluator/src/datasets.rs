@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use generator::config::GeneratorConfig;
 use generator::generate::generate_dataset;
 use pairs::dataset::{Dataset, PAIRS_FILE};
-use pairs::Pair;
+use pairs::{Pair, PairKind};
 
 use crate::error::EvalError;
 
@@ -27,10 +27,16 @@ impl DatasetSpec {
     }
 }
 
-/// The default datasets: the paper's SF2F test protocol on the generator's defaults. SF2P
-/// and SP2P join when the scanner lands.
+/// The default datasets: the paper's three synthetic test sets (SF2F, SF2P, SP2P) on the
+/// generator's defaults, named by their kind.
 pub fn default_datasets() -> Vec<DatasetSpec> {
-    vec![DatasetSpec { name: "sf2f".into(), config: GeneratorConfig::default() }]
+    [PairKind::Sf2f, PairKind::Sf2p, PairKind::Sp2p]
+        .into_iter()
+        .map(|kind| DatasetSpec {
+            name: kind.as_str().to_lowercase(),
+            config: GeneratorConfig::of_kind(kind),
+        })
+        .collect()
 }
 
 /// A loaded dataset: its pairs in file order and the hash of its pair file.

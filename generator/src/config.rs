@@ -5,13 +5,14 @@ use serde::{Deserialize, Serialize};
 use pairs::PairKind;
 
 use crate::categories::{self, Category, Split};
+pub use crate::scan_config::ScanConfig;
 
 /// Everything that determines a generated dataset; together with the generator version it
 /// makes the dataset reproducible byte for byte.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct GeneratorConfig {
-    /// Kind of pairs; only `SF2F` until the virtual scanner lands.
+    /// Kind of pairs: `SF2F` (full to full), `SF2P` (full to scan) or `SP2P` (scan to scan).
     pub kind: PairKind,
     /// Number of objects (the paper: 175).
     pub objects: u32,
@@ -35,6 +36,18 @@ pub struct GeneratorConfig {
     pub rest_probability: f64,
     /// Fewest points any part may have in either cloud (the paper drops parts under 10).
     pub min_part_points: u32,
+    /// The virtual scanner, for the scanned kinds (built-in defaults when absent; a scanned
+    /// dataset's manifest always records the values used).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub scan: Option<ScanConfig>,
+    /// Training streams only: scanned pairs made after each full pair, from new
+    /// viewpoints of the same two shapes (the paper's mix: 5), alternating SF2P and SP2P.
+    #[serde(skip_serializing_if = "is_zero")]
+    pub scanned_per_pair: u32,
+}
+
+fn is_zero(n: &u32) -> bool {
+    *n == 0
 }
 
 impl Default for GeneratorConfig {
@@ -52,6 +65,8 @@ impl Default for GeneratorConfig {
             pose_translation: 0.05,
             rest_probability: 0.3,
             min_part_points: 10,
+            scan: None,
+            scanned_per_pair: 0,
         }
     }
 }
@@ -76,9 +91,6 @@ pub enum ConfigError {
         /// What is wrong.
         reason: String,
     },
-    /// The kind needs a stage that does not exist yet.
-    #[error("kind {0:?} needs the virtual scanner, which is not built yet; use SF2F")]
-    UnsupportedKind(PairKind),
 }
 
 impl GeneratorConfig {
@@ -88,13 +100,28 @@ impl GeneratorConfig {
         Self { split: Split::Train, ..Self::default() }
     }
 
+    /// The built-in defaults for a kind: the paper's protocol, with the scanner's
+    /// defaults written out for the scanned kinds.
+    pub fn of_kind(kind: PairKind) -> Self {
+        Self { kind, ..Self::default() }.resolved()
+    }
+
+    /// The scanner settings in force: the config's, or the built-in defaults.
+    pub fn scanner(&self) -> ScanConfig {
+        self.scan.clone().unwrap_or_default()
+    }
+
+    /// The config with every value it uses written out: the scanner's settings for the
+    /// scanned kinds (a full-shape config keeps none), so manifests record all of them.
+    pub fn resolved(&self) -> Self {
+        let scan = (self.kind != PairKind::Sf2f).then(|| self.scanner());
+        Self { scan, ..self.clone() }
+    }
+
     /// Checks every field; the first problem is returned.
     pub fn validate(&self) -> Result<(), ConfigError> {
         let invalid =
             |field, reason: &str| Err(ConfigError::Invalid { field, reason: reason.into() });
-        if self.kind != PairKind::Sf2f {
-            return Err(ConfigError::UnsupportedKind(self.kind));
-        }
         if self.objects == 0 {
             return invalid("objects", "must be at least 1");
         }
@@ -123,6 +150,7 @@ impl GeneratorConfig {
         if !(self.pose_translation >= 0.0 && self.pose_translation.is_finite()) {
             return invalid("pose_translation", "must be finite and non-negative");
         }
+        self.scanner().validate()?;
         self.categories().map(|_| ())
     }
 
@@ -168,6 +196,13 @@ mod tests {
         let text = include_str!("../../datasets/sf2f.toml");
         let parsed: GeneratorConfig = toml::from_str(text).expect("parses");
         assert_eq!(parsed, GeneratorConfig::default());
+        for (text, kind) in [
+            (include_str!("../../datasets/sf2p.toml"), PairKind::Sf2p),
+            (include_str!("../../datasets/sp2p.toml"), PairKind::Sp2p),
+        ] {
+            let parsed: GeneratorConfig = toml::from_str(text).expect("parses");
+            assert_eq!(parsed, GeneratorConfig::of_kind(kind));
+        }
     }
 
     #[test]
@@ -179,7 +214,13 @@ mod tests {
                 GeneratorConfig { categories: vec!["toaster".into()], ..Default::default() },
                 "toaster",
             ),
-            (GeneratorConfig { kind: PairKind::Sp2p, ..Default::default() }, "scanner"),
+            (
+                GeneratorConfig {
+                    scan: Some(ScanConfig { dropout: 1.5, ..Default::default() }),
+                    ..Default::default()
+                },
+                "dropout",
+            ),
         ];
         for (config, needle) in cases {
             let err = config.validate().expect_err(needle).to_string();

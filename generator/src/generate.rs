@@ -6,7 +6,8 @@ use std::path::Path;
 use pairs::dataset::{DatasetOrigin, DatasetWriter, Manifest, Shard};
 use pairs::math::{Isometry3, Real};
 use pairs::parts::part_sizes;
-use pairs::{Cloud, DatasetError, Pair, PairError, PairInput, Provenance};
+use pairs::scan::{PairImages, ScanImages};
+use pairs::{Cloud, DatasetError, Pair, PairError, PairInput, PairKind, Provenance, Scan, Scans};
 use rayon::prelude::*;
 
 use crate::categories::split_table;
@@ -15,7 +16,10 @@ use crate::kinematics::link_poses;
 use crate::label::{ground_truth, merge_links, Parts, Side};
 use crate::objects::{ArticulatedObject, ObjectError};
 use crate::protocol::{candidate_pairs, draw_state, global_pose};
-use crate::sampling::SurfaceSampler;
+use crate::sampling::{SurfacePoint, SurfaceSampler};
+use crate::scan::scene::{PosedScene, SceneError};
+use crate::scan::visibility::is_visible;
+use crate::scan::{images, scan_side, Requirements, ScannedSide, SURFACE_TOLERANCE};
 use crate::seed::{rng_for, Rng, Stream};
 use crate::shard::shard_objects;
 
@@ -60,6 +64,12 @@ pub enum GenerateError {
     /// Writing the dataset failed.
     #[error(transparent)]
     Dataset(#[from] DatasetError),
+    /// The posed object could not be ray cast.
+    #[error(transparent)]
+    Scene(#[from] SceneError),
+    /// Encoding a scan's images failed.
+    #[error("encoding a scan image: {0}")]
+    Image(#[from] image::ImageError),
     /// A shard was asked for that does not exist, or shards do not fit together.
     #[error(transparent)]
     Shard(#[from] crate::shard::ShardError),
@@ -76,6 +86,8 @@ pub struct GeneratedPair {
     pub poses_q: Vec<Isometry3>,
     /// Which links form which part.
     pub parts: Parts,
+    /// PNG images of the scanned sides (empty for full shapes, or when not asked for).
+    pub images: PairImages,
 }
 
 /// Builds object `index` of a dataset: its category comes in turn from the config.
@@ -90,10 +102,31 @@ pub fn build_object(
     Ok(object)
 }
 
-/// All pairs of object `index`, per the paper's protocol.
+/// All pairs of object `index`, per the paper's protocol, with the images of their scans.
 pub fn object_pairs(
     config: &GeneratorConfig,
     index: u32,
+) -> Result<Vec<GeneratedPair>, GenerateError> {
+    object_pairs_with(config, index, Variant { index: 0, kind: config.kind, images: true })
+}
+
+/// Which rendition of an object's pairs to make: the training stream makes several scanned
+/// variants of the same shapes, each from its own viewpoints, without images.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Variant {
+    /// 0 for a dataset's own pairs; 1, 2, ... for extra scanned renditions.
+    pub index: u32,
+    /// Kind of the pairs.
+    pub kind: PairKind,
+    /// Whether to encode the scans' PNG images.
+    pub images: bool,
+}
+
+/// The pairs of object `index` in one [`Variant`].
+pub fn object_pairs_with(
+    config: &GeneratorConfig,
+    index: u32,
+    variant: Variant,
 ) -> Result<Vec<GeneratedPair>, GenerateError> {
     let object = build_object(config, index)?;
     let sampler = SurfaceSampler::new(&object);
@@ -103,15 +136,16 @@ pub fn object_pairs(
         .collect();
     let wanted = config.pairs_per_object as usize;
     let mut pairs = Vec::with_capacity(wanted);
-    let scene = Scene { config, object: &object, sampler: &sampler, index };
+    let scene = Scene { config, object: &object, sampler: &sampler, index, variant };
     for (candidate, (i, j)) in candidate_pairs(&states, &mut rng).into_iter().enumerate() {
         if pairs.len() == wanted {
             break;
         }
-        let mut rng = rng_for(config.seed, u64::from(index), Stream::Pair(candidate as u32));
+        let candidate = candidate as u32;
+        let mut rng = rng_for(config.seed, u64::from(index), Stream::Pair(candidate));
         let (p, q) =
             (State { index: i, values: &states[i] }, State { index: j, values: &states[j] });
-        if let Some(pair) = make_pair(&scene, pairs.len(), p, q, &mut rng)? {
+        if let Some(pair) = make_pair(&scene, (pairs.len(), candidate), p, q, &mut rng)? {
             pairs.push(pair);
         }
     }
@@ -133,6 +167,7 @@ struct Scene<'a> {
     object: &'a ArticulatedObject,
     sampler: &'a SurfaceSampler,
     index: u32,
+    variant: Variant,
 }
 
 /// One articulation state: its index among the object's states and its joint values.
@@ -141,15 +176,34 @@ struct State<'a> {
     values: &'a [Real],
 }
 
-/// One pair between two states, or `None` if a part gets fewer than `min_part_points`.
+/// One observed side of a pair: its points as surface samples, and its scan if scanned.
+struct Observation {
+    samples: Vec<SurfacePoint>,
+    scan: Option<ScannedSide>,
+}
+
+impl Observation {
+    /// Per point: whether it is a flying pixel (never for a full shape).
+    fn outlier(&self, i: usize) -> bool {
+        self.scan.as_ref().is_some_and(|s| s.outlier[i])
+    }
+
+    /// Per point: the standard deviation of its depth noise (0 for a full shape).
+    fn sigma(&self, i: usize) -> Real {
+        self.scan.as_ref().map_or(0.0, |s| s.sigma[i])
+    }
+}
+
+/// One pair between two states, or `None` if a part gets fewer than `min_part_points`
+/// (or no viewpoint shows every part).
 fn make_pair(
     scene: &Scene,
-    pair_index: usize,
+    (pair_index, candidate): (usize, u32),
     state_p: State,
     state_q: State,
     rng: &mut Rng,
 ) -> Result<Option<GeneratedPair>, GenerateError> {
-    let Scene { config, object, sampler, index: object_index } = *scene;
+    let Scene { config, object, sampler, index: object_index, variant } = *scene;
     let (values_p, values_q) = (state_p.values, state_q.values);
     let n = config.points as usize;
     let pose = |values: &[Real], rng: &mut Rng| {
@@ -159,33 +213,57 @@ fn make_pair(
     };
     let poses_p = pose(values_p, rng);
     let poses_q = pose(values_q, rng);
-    let samples_p = sampler.sample(object, n, rng);
-    let samples_q = sampler.sample(object, n, rng);
-    let cloud = |samples: &[crate::sampling::SurfacePoint], poses: &[Isometry3]| {
-        let points: Vec<_> = samples.iter().map(|s| s.posed(poses)).collect();
-        Cloud::normalise(&points)
-    };
-    let (Some(cloud_p), Some(cloud_q)) = (cloud(&samples_p, &poses_p), cloud(&samples_q, &poses_q))
-    else {
-        return Ok(None);
-    };
     let motions: Vec<Isometry3> =
         poses_q.iter().zip(&poses_p).map(|(q, p)| q * p.inverse()).collect();
-    let parts = merge_links(&motions, cloud_p.normalisation.scale);
-    let p = Side { samples: &samples_p, poses: &poses_p, values: values_p, cloud: &cloud_p };
-    let q = Side { samples: &samples_q, poses: &poses_q, values: values_q, cloud: &cloud_q };
-    let truth = ground_truth(object, &p, &q, &parts);
+    let (scan_p, scan_q) = match variant.kind {
+        PairKind::Sf2f => (false, false),
+        PairKind::Sf2p => (false, true),
+        PairKind::Sp2p => (true, true),
+    };
+    let id = pair_id(variant, object_index, pair_index);
+    let (obs_p, obs_q, parts) = if scan_q {
+        // Parts come first: the scanner checks that every part is seen.
+        let size = (object_size(object, &poses_p))?;
+        let parts = merge_links(&motions, size);
+        let mut scan_rng =
+            rng_for(config.seed, u64::from(object_index), Stream::Scan(candidate, variant.index));
+        let observe = |poses: &[Isometry3], scanned: bool, rng: &mut Rng| {
+            observe_side(scene, poses, scanned.then_some(&parts), rng)
+        };
+        let Some(p) = observe(&poses_p, scan_p, if scan_p { &mut scan_rng } else { rng })? else {
+            return Ok(None);
+        };
+        let Some(q) = observe(&poses_q, true, &mut scan_rng)? else {
+            return Ok(None);
+        };
+        (p, q, Some(parts))
+    } else {
+        let samples_p = sampler.sample(object, n, rng);
+        let samples_q = sampler.sample(object, n, rng);
+        (
+            Observation { samples: samples_p, scan: None },
+            Observation { samples: samples_q, scan: None },
+            None,
+        )
+    };
+    let cloud = |obs: &Observation, poses: &[Isometry3]| {
+        let points: Vec<_> = obs.samples.iter().map(|s| s.posed(poses)).collect();
+        Cloud::normalise(&points)
+    };
+    let (Some(cloud_p), Some(cloud_q)) = (cloud(&obs_p, &poses_p), cloud(&obs_q, &poses_q)) else {
+        return Ok(None);
+    };
+    let parts = parts.unwrap_or_else(|| merge_links(&motions, cloud_p.normalisation.scale));
+    let present = presence(&obs_p, &obs_q, &poses_q);
+    let p = Side { samples: &obs_p.samples, poses: &poses_p, values: values_p, cloud: &cloud_p };
+    let q = Side { samples: &obs_q.samples, poses: &poses_q, values: values_q, cloud: &cloud_q };
+    let truth = ground_truth(object, &p, &q, &parts, &present);
     let min = config.min_part_points as usize;
     let too_small = |ids: &[u8]| part_sizes(ids, parts.count()).into_iter().any(|s| s < min);
     if parts.count() < 2 || too_small(&truth.part_p) || too_small(&truth.part_q) {
         return Ok(None);
     }
-    let input = PairInput {
-        id: format!("{}-{object_index:05}-{pair_index}", config.kind.as_str().to_lowercase()),
-        kind: config.kind,
-        p: cloud_p,
-        q: cloud_q,
-    };
+    let input = PairInput { id: id.clone(), kind: variant.kind, p: cloud_p, q: cloud_q };
     let provenance = Provenance {
         category: object.category.clone(),
         object_id: object_index,
@@ -194,8 +272,90 @@ fn make_pair(
         seed: config.seed,
         generator_version: GENERATOR_VERSION.into(),
     };
-    let pair = Pair::new(input, truth, provenance)?;
-    Ok(Some(GeneratedPair { pair, poses_p, poses_q, parts }))
+    let record = |obs: &Observation, side: &str| {
+        obs.scan.as_ref().map(|s| {
+            let images = ScanImages::for_pair(&id, side);
+            Scan::new(s.camera.intrinsics, &s.camera.pose, s.depth_scale, images)
+        })
+    };
+    let scans = Scans { p: record(&obs_p, "p"), q: record(&obs_q, "q") };
+    let pair = Pair::new(input, truth, provenance)?.with_scans(scans)?;
+    let images = if variant.images {
+        let encode = |obs: &Observation| {
+            obs.scan
+                .as_ref()
+                .map(|s| images::encode(&s.render, &s.depth, &parts.of_link))
+                .transpose()
+        };
+        PairImages { p: encode(&obs_p)?, q: encode(&obs_q)? }
+    } else {
+        PairImages::default()
+    };
+    Ok(Some(GeneratedPair { pair, poses_p, poses_q, parts, images }))
+}
+
+/// The id of a pair: kind, object, index within the object, and the variant past 0.
+fn pair_id(variant: Variant, object: u32, pair: usize) -> String {
+    let kind = variant.kind.as_str().to_lowercase();
+    match variant.index {
+        0 => format!("{kind}-{object:05}-{pair}"),
+        v => format!("{kind}-{object:05}-{pair}-v{v}"),
+    }
+}
+
+/// The diagonal of the posed object's bounding box.
+fn object_size(object: &ArticulatedObject, poses: &[Isometry3]) -> Result<Real, GenerateError> {
+    Ok(PosedScene::new(object, poses)?.diagonal())
+}
+
+/// One side's points: N surface samples, or a scan when `parts` is given.
+fn observe_side(
+    scene: &Scene,
+    poses: &[Isometry3],
+    parts: Option<&Parts>,
+    rng: &mut Rng,
+) -> Result<Option<Observation>, GenerateError> {
+    let n = scene.config.points as usize;
+    let Some(parts) = parts else {
+        return Ok(Some(Observation {
+            samples: scene.sampler.sample(scene.object, n, rng),
+            scan: None,
+        }));
+    };
+    let needs = Requirements {
+        part_of_link: &parts.of_link,
+        parts: parts.count(),
+        points: n,
+        min_part_points: scene.config.min_part_points as usize,
+    };
+    let scanner = scene.config.scanner();
+    let scan = scan_side(scene.object, scene.sampler, poses, &scanner, &needs, rng)?;
+    Ok(scan.map(|s| Observation { samples: s.samples.clone(), scan: Some(s) }))
+}
+
+/// Per point of P: whether its moved point is present in Q. Always for a full Q; for a
+/// scanned Q, when it is a surface point (not a flying pixel) that Q's camera sees on Q's
+/// posed mesh and whose pixel the scanner did not lose. The tolerance along the ray covers
+/// P's own depth noise (three standard deviations).
+fn presence(p: &Observation, q: &Observation, poses_q: &[Isometry3]) -> Vec<bool> {
+    let Some(scan) = &q.scan else {
+        return vec![true; p.samples.len()];
+    };
+    let surface = SURFACE_TOLERANCE * scan.scene.diagonal();
+    p.samples
+        .iter()
+        .enumerate()
+        .map(|(i, s)| {
+            !p.outlier(i)
+                && is_visible(
+                    &scan.scene,
+                    &scan.camera,
+                    &s.posed(poses_q),
+                    surface + 3.0 * p.sigma(i),
+                    Some(&scan.lost),
+                )
+        })
+        .collect()
 }
 
 /// Generates a dataset into `dir` (the whole dataset, or only `shard` of it), calling
@@ -215,7 +375,7 @@ pub fn generate_dataset(
         let generated: Vec<Vec<GeneratedPair>> =
             batch.par_iter().map(|&i| object_pairs(config, i)).collect::<Result<_, _>>()?;
         for pair in generated.iter().flatten() {
-            writer.write(&pair.pair)?;
+            writer.write_scanned(&pair.pair, &pair.images)?;
             progress(writer.len());
         }
     }
@@ -227,7 +387,7 @@ pub fn dataset_origin(config: &GeneratorConfig, shard: Option<Shard>) -> Dataset
     DatasetOrigin {
         generator_version: GENERATOR_VERSION.into(),
         seed: config.seed,
-        config: serde_json::to_value(config).expect("a config always serialises"),
+        config: serde_json::to_value(config.resolved()).expect("a config always serialises"),
         splits: split_table(),
         shard,
     }

@@ -64,8 +64,16 @@ pub struct Side<'a> {
     pub cloud: &'a Cloud,
 }
 
-/// Part ids of both clouds and the full ground truth of a pair (DESIGN.md definitions).
-pub fn ground_truth(object: &ArticulatedObject, p: &Side, q: &Side, parts: &Parts) -> GroundTruth {
+/// Part ids of both clouds and the full ground truth of a pair (DESIGN.md definitions);
+/// `present` says per point of P whether its moved point is present in Q (all true for a
+/// full Q). A present point whose part has no point in Q is marked absent.
+pub fn ground_truth(
+    object: &ArticulatedObject,
+    p: &Side,
+    q: &Side,
+    parts: &Parts,
+    present: &[bool],
+) -> GroundTruth {
     let link_motion = |link: usize| q.poses[link] * p.poses[link].inverse();
     let (norm_p, norm_q) = (&p.cloud.normalisation, &q.cloud.normalisation);
     let motions: Vec<Similarity> = parts
@@ -83,11 +91,21 @@ pub fn ground_truth(object: &ArticulatedObject, p: &Side, q: &Side, parts: &Part
         .map(|(x, &k)| motions[usize::from(k)].apply(x))
         .collect();
     let flow = moved.iter().zip(&p.cloud.points).map(|(m, x)| m - x).collect();
-    let corr_index = moved
+    let corr_index: Vec<i32> = moved
         .iter()
         .zip(&part_p)
-        .map(|(m, &k)| nearest_of_part(m, k, &q.cloud.points, &part_q))
+        .zip(present)
+        .map(
+            |((m, &k), &present)| {
+                if present {
+                    nearest_of_part(m, k, &q.cloud.points, &part_q)
+                } else {
+                    -1
+                }
+            },
+        )
         .collect();
+    let corr_mask = corr_index.iter().map(|&i| i >= 0).collect();
     let joints = object
         .joints
         .iter()
@@ -107,15 +125,7 @@ pub fn ground_truth(object: &ArticulatedObject, p: &Side, q: &Side, parts: &Part
             }
         })
         .collect();
-    GroundTruth {
-        part_p,
-        part_q,
-        motions,
-        flow,
-        corr_mask: vec![true; p.samples.len()],
-        corr_index,
-        joints,
-    }
+    GroundTruth { part_p, part_q, motions, flow, corr_mask, corr_index, joints }
 }
 
 /// Index of the point of `cloud` labelled `part` nearest to `x`, or -1 if there is none.

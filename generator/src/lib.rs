@@ -3,8 +3,9 @@
 //!
 //! The stages are separate modules with plain-data inputs and outputs: an
 //! [`objects::ArticulatedObject`] from a [`categories::Category`]; joint states from
-//! [`protocol`]; link poses from [`kinematics`]; surface samples from [`sampling`]; parts and
-//! ground truth from [`label`]; and [`generate`] runs them per pair and writes datasets.
+//! [`protocol`]; link poses from [`kinematics`]; surface samples from [`sampling`] or
+//! virtual scans from [`scan`]; parts and ground truth from [`label`]; and [`generate`]
+//! runs them per pair and writes datasets.
 //!
 //! ```
 //! use generator::{config::GeneratorConfig, generate::object_pairs};
@@ -27,6 +28,8 @@ pub mod mesh;
 pub mod objects;
 pub mod protocol;
 pub mod sampling;
+pub mod scan;
+pub mod scan_config;
 pub mod seed;
 pub mod shard;
 pub mod stream;

@@ -17,8 +17,10 @@ use pairs::PairKind;
 /// flow, correspondences and joints, following the test protocol of Yi et al. 2018.
 ///
 /// With no arguments it writes the paper-size SF2F set (175 objects, 875 pairs, N = 512,
-/// seed 0, held-out test categories) to datasets/sf2f. Flags override the values of
-/// --config, which override the built-in defaults (datasets/sf2f.toml lists them).
+/// seed 0, held-out test categories) to datasets/sf2f; `--kind sf2p` and `--kind sp2p`
+/// write the scanned sets to datasets/sf2p and datasets/sp2p. Flags override the values of
+/// --config, which override the built-in defaults (datasets/sf2f.toml, sf2p.toml and
+/// sp2p.toml list them).
 #[derive(Debug, Parser)]
 #[command(version, about, long_about, args_conflicts_with_subcommands = true, after_help = EXAMPLES)]
 struct Args {
@@ -27,7 +29,9 @@ struct Args {
     /// TOML file with any of the config fields (see datasets/sf2f.toml).
     #[arg(short, long, value_name = "FILE")]
     config: Option<PathBuf>,
-    /// Kind of pairs: SF2F (full to full). SF2P and SP2P need the virtual scanner.
+    /// Kind of pairs: SF2F (full to full), SF2P (full to a virtual scan) or SP2P (scan to
+    /// scan, with depth, label and colour images under <out>/images). The scanner's
+    /// settings are the [scan] table of --config (datasets/sf2p.toml lists them).
     #[arg(long, value_parser = parse_kind)]
     kind: Option<PairKind>,
     /// Number of objects; each gives --pairs-per-object pairs.
@@ -82,6 +86,8 @@ struct Args {
 
 /// Shown after the options in `--help`.
 const EXAMPLES: &str = "Examples:
+  generator --kind sf2p                                   the paper-size SF2P set, datasets/sf2p
+  generator --kind sp2p -n 20 --out /tmp/sp2p             20 objects of scan pairs with images
   generator --split train -n 20000 --out datasets/train   a training set on disk
   generator --shard 3/8 --out shards/3                    shard 3 of 8 (cluster array job)
   generator merge shards/* --out datasets/sf2f            the shards as one dataset
@@ -192,7 +198,7 @@ fn run(args: Args) -> Result<()> {
     }
     let config = args.config()?;
     if args.print_config {
-        print!("{}", toml::to_string(&config).context("formatting the config")?);
+        print!("{}", toml::to_string(&config.resolved()).context("formatting the config")?);
         return Ok(());
     }
     config.validate().context("checking the config")?;

@@ -16,6 +16,8 @@ pub enum Stream {
     States,
     /// Everything of the pair with this index within its object (poses, samples).
     Pair(u32),
+    /// The scanner's viewpoints and noise for a candidate pair, in one variant.
+    Scan(u32, u32),
 }
 
 /// The random stream for `purpose` of object `object` in a dataset with `seed`.
@@ -25,6 +27,8 @@ pub fn rng_for(seed: u64, object: u64, purpose: Stream) -> Rng {
         Stream::Object => 0,
         Stream::States => 1,
         Stream::Pair(k) => 2 + u64::from(k),
+        // Bit 23 set, then 7 bits of variant and 16 of pair: apart from every `Pair(k)`.
+        Stream::Scan(k, v) => 1 << 23 | (u64::from(v) & 0x7f) << 16 | (u64::from(k) & 0xffff),
     };
     // ChaCha's 64-bit stream id: 24 bits of purpose under 40 bits of object index.
     rng.set_stream((object << 24) | (purpose & 0xff_ffff));
@@ -42,5 +46,7 @@ mod tests {
         assert_eq!(draw(3, Stream::Pair(2)), draw(3, Stream::Pair(2)));
         assert_ne!(draw(3, Stream::Pair(2)), draw(3, Stream::Pair(1)));
         assert_ne!(draw(3, Stream::Object), draw(4, Stream::Object));
+        assert_ne!(draw(3, Stream::Scan(2, 0)), draw(3, Stream::Scan(2, 1)));
+        assert_ne!(draw(3, Stream::Scan(2, 0)), draw(3, Stream::Pair(2)));
     }
 }

@@ -119,7 +119,8 @@ pub fn merge_shards(
     let mut writer = DatasetWriter::create(out, overwrite)?;
     for (_, dataset) in &opened {
         for pair in dataset.pairs()? {
-            writer.write(&pair?)?;
+            let pair = pair?;
+            writer.write_scanned(&pair, &dataset.read_images(&pair)?)?;
             progress(writer.len());
         }
     }

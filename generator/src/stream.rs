@@ -20,11 +20,11 @@
 use std::sync::mpsc::{sync_channel, Receiver};
 use std::thread::JoinHandle;
 
-use pairs::Pair;
+use pairs::{Pair, PairKind};
 use rayon::prelude::*;
 
 use crate::config::GeneratorConfig;
-use crate::generate::{object_pairs, GenerateError};
+use crate::generate::{object_pairs_with, GenerateError, Variant};
 
 /// Objects made per batch; the stream keeps at most [`BATCHES_AHEAD`] batches ready.
 const BATCH_OBJECTS: u32 = 16;
@@ -77,22 +77,42 @@ impl TrainingStream {
 
 /// The pairs of objects `objects`, made in parallel and returned in object order.
 fn make_batch(config: &GeneratorConfig, objects: std::ops::Range<u32>) -> Batch {
-    let made: Vec<Option<Vec<Pair>>> = objects
+    let made: Vec<Vec<Pair>> = objects
         .into_par_iter()
-        .map(|i| match object_pairs(config, i) {
-            Ok(pairs) => Ok(Some(pairs.into_iter().map(|g| g.pair).collect())),
+        .map(|i| object_stream_pairs(config, i))
+        .collect::<Result<_, _>>()?;
+    Ok(made.into_iter().flatten().collect())
+}
+
+/// The stream's pairs of object `index`: its pairs of the config's kind, then
+/// `scanned_per_pair` scanned variants of them (SF2P and SP2P in turn), each from its own
+/// viewpoints. A variant the object cannot give is skipped, as a training set would drop it.
+fn object_stream_pairs(config: &GeneratorConfig, index: u32) -> Result<Vec<Pair>, GenerateError> {
+    let variants = (0..=config.scanned_per_pair).map(|v| Variant {
+        index: v,
+        kind: match v {
+            0 => config.kind,
+            v if v % 2 == 1 => PairKind::Sf2p,
+            _ => PairKind::Sp2p,
+        },
+        images: false,
+    });
+    let mut pairs = Vec::new();
+    for variant in variants {
+        match object_pairs_with(config, index, variant) {
+            Ok(made) => pairs.extend(made.into_iter().map(|g| g.pair)),
             Err(GenerateError::TooFewPairs { object, category, .. }) => {
                 tracing::debug!(
                     object,
                     category,
-                    "training stream skips an object with a part too small to sample"
+                    variant = variant.index,
+                    "training stream skips an object whose parts cannot all be sampled"
                 );
-                Ok(None)
             }
-            Err(e) => Err(e),
-        })
-        .collect::<Result<_, _>>()?;
-    Ok(made.into_iter().flatten().flatten().collect())
+            Err(e) => return Err(e),
+        }
+    }
+    Ok(pairs)
 }
 
 impl Iterator for TrainingStream {
@@ -166,6 +186,20 @@ mod tests {
     fn the_stream_runs_past_one_batch_and_stops_when_dropped() {
         let count = TrainingStream::new(small()).expect("stream").take(120).count();
         assert_eq!(count, 120);
+    }
+
+    #[test]
+    fn scanned_variants_follow_each_objects_full_pairs() {
+        let config = GeneratorConfig { scanned_per_pair: 2, ..small() };
+        let pairs: Vec<Pair> =
+            TrainingStream::new(config).expect("stream").take(15).map(Result::unwrap).collect();
+        let kinds: Vec<PairKind> = pairs.iter().map(|p| p.input().kind).collect();
+        let expected = [PairKind::Sf2f, PairKind::Sf2p, PairKind::Sp2p].map(|k| [k; 5]).concat();
+        assert_eq!(kinds, expected);
+        assert!(pairs[5].id().ends_with("-v1") && pairs[10].id().ends_with("-v2"));
+        assert!(pairs[5].scans().q.is_some() && pairs[5].scans().p.is_none());
+        assert!(pairs[10].scans().p.is_some());
+        assert!(pairs.iter().all(|p| p.provenance().object_id == 0));
     }
 
     #[test]

@@ -172,6 +172,10 @@ pub struct TrainConfig {
     /// Largest angle of the random rotation applied to both clouds of a training pair,
     /// degrees (180: any rotation).
     pub augment_rotation_deg: f64,
+    /// Scanned pairs (SF2P and SP2P in turn, from new viewpoints) the stream adds after
+    /// each full pair; the paper's mix is 5, and 0 (the default) trains on full shapes only.
+    #[serde(default)]
+    pub scanned_per_pair: u32,
     /// Seed of the training stream and the augmentation.
     pub seed: u64,
     /// Pairs in the fixed validation set (validation categories).

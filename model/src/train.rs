@@ -107,6 +107,7 @@ pub fn stream_config(config: &TrainConfig) -> GeneratorConfig {
         seed: config.seed,
         states_per_object: 2,
         pairs_per_object: 1,
+        scanned_per_pair: config.scanned_per_pair,
         ..GeneratorConfig::training()
     }
 }

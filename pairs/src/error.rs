@@ -134,6 +134,14 @@ pub enum DatasetError {
         /// Pairs found.
         found: u64,
     },
+    /// A scanned side came without its images, or with an image path outside `images/`.
+    #[error("pair {pair}: {reason}")]
+    Images {
+        /// The pair.
+        pair: String,
+        /// What is wrong.
+        reason: String,
+    },
     /// The output folder already holds a dataset and overwriting was not asked for.
     #[error("{dir} already holds a dataset; choose another folder or allow overwriting")]
     Exists {

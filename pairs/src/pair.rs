@@ -5,6 +5,7 @@ use serde::{Deserialize, Serialize};
 use crate::cloud::Cloud;
 use crate::error::PairError;
 use crate::ground_truth::GroundTruth;
+use crate::scan::Scans;
 use crate::validate;
 
 /// Which observations a pair holds (DESIGN.md, "Shared definitions").
@@ -68,6 +69,7 @@ pub struct Pair {
     input: PairInput,
     truth: GroundTruth,
     provenance: Provenance,
+    scans: Scans,
 }
 
 impl Pair {
@@ -79,7 +81,20 @@ impl Pair {
         provenance: Provenance,
     ) -> Result<Self, PairError> {
         validate::pair(&input, &truth)?;
-        Ok(Self { input, truth, provenance })
+        Ok(Self { input, truth, provenance, scans: Scans::default() })
+    }
+
+    /// The pair with the camera records of its scanned sides, checked (finite, positive
+    /// intrinsics, a rotation in the extrinsics, a positive depth scale).
+    pub fn with_scans(mut self, scans: Scans) -> Result<Self, PairError> {
+        validate::scans(&self.input.id, &scans)?;
+        self.scans = scans;
+        Ok(self)
+    }
+
+    /// How the scanned sides were captured; both `None` for full shapes.
+    pub fn scans(&self) -> &Scans {
+        &self.scans
     }
 
     /// The pair without its ground truth, for methods.

@@ -2,9 +2,10 @@
 
 use crate::error::PairError;
 use crate::ground_truth::GroundTruth;
-use crate::math::{Point3, Real};
+use crate::math::{Matrix3, Point3, Real};
 use crate::pair::PairInput;
 use crate::parts::{PartId, MAX_PARTS};
+use crate::scan::Scans;
 
 /// Tolerance on stored flow against the motion it should equal, normalised units.
 const FLOW_TOLERANCE: Real = 1e-4;
@@ -160,6 +161,27 @@ fn joints(id: &str, truth: &GroundTruth) -> Result<(), PairError> {
             if (axis.norm() - 1.0).abs() > 1e-3 {
                 return Err(inconsistent(id, "joints", j, "axis is not unit length".into()));
             }
+        }
+    }
+    Ok(())
+}
+
+/// Checks the camera records of a pair's scanned sides.
+pub(crate) fn scans(id: &str, scans: &Scans) -> Result<(), PairError> {
+    for (field, scan) in [("scan_p", &scans.p), ("scan_q", &scans.q)] {
+        let Some(scan) = scan else { continue };
+        let k = &scan.intrinsics;
+        finite(id, field, 0, &[k.fx, k.fy, k.cx, k.cy, scan.depth_scale])?;
+        finite(id, field, 0, scan.rotation.as_slice())?;
+        finite(id, field, 0, scan.translation.as_slice())?;
+        if k.width == 0 || k.height == 0 || k.fx <= 0.0 || k.fy <= 0.0 || scan.depth_scale <= 0.0 {
+            let reason = "image size, focal lengths and depth scale must be positive".into();
+            return Err(inconsistent(id, field, 0, reason));
+        }
+        let defect = (scan.rotation.transpose() * scan.rotation - Matrix3::identity()).norm();
+        if defect > ROTATION_TOLERANCE || scan.rotation.determinant() <= 0.0 {
+            let reason = "extrinsic rotation is not a rotation matrix".into();
+            return Err(inconsistent(id, field, 0, reason));
         }
     }
     Ok(())

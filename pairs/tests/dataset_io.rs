@@ -226,3 +226,65 @@ fn an_mcap_without_pairs_is_a_schema_error() {
     let err = PairReader::open(&path).expect("open").next().expect("an item").expect_err("schema");
     assert!(matches!(err, DatasetError::Schema { .. }), "{err}");
 }
+
+/// A hinge pair whose Q is marked as scanned, with stand-in image bytes.
+fn scanned_pair(id: &str) -> (Pair, pairs::scan::PairImages) {
+    use pairs::math::{Isometry3, Vector3};
+    use pairs::scan::{PairImages, ScanImages};
+    use pairs::{Intrinsics, Scan, Scans};
+    let camera = Isometry3::new(Vector3::new(0.0, 0.0, 2.0), Vector3::y() * 3.0);
+    let intrinsics = Intrinsics::with_fov(32, 24, 0.8);
+    let scan = Scan::new(intrinsics, &camera, 1e-4, ScanImages::for_pair(id, "q"));
+    let pair = synthetic::hinge_pair(id, 4, 0.5)
+        .with_scans(Scans { p: None, q: Some(scan) })
+        .expect("a valid camera");
+    let bytes = |kind: &str| format!("{id} {kind}").into_bytes();
+    let images =
+        ScanImages { depth: bytes("depth"), labels: bytes("labels"), colour: bytes("colour") };
+    (pair, PairImages { p: None, q: Some(images) })
+}
+
+#[test]
+fn scan_images_are_written_checksummed_and_read_back() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let mut writer = DatasetWriter::create(dir.path(), false).expect("create");
+    let written: Vec<_> = ["a", "b"].map(scanned_pair).into();
+    for (pair, images) in &written {
+        writer.write_scanned(pair, images).expect("write");
+    }
+    let manifest = writer.finish(origin()).expect("finish");
+    assert!(manifest.files.contains_key("images/a_q_depth.png"));
+    assert_eq!(manifest.files.len(), 2 + 2 * 3);
+    assert!(!dir.path().join("images.partial").exists());
+    let dataset = Dataset::open(dir.path()).expect("open");
+    dataset.verify().expect("checksums");
+    let read = read_all(dir.path()).expect("pairs");
+    for ((pair, images), back) in written.iter().zip(&read) {
+        assert_eq!(pair, back, "the scan record survives the round trip");
+        assert_eq!(&dataset.read_images(back).expect("images"), images);
+    }
+    // A changed image fails verification.
+    std::fs::write(dir.path().join("images/b_q_labels.png"), b"tampered").expect("write");
+    let err = dataset.verify().expect_err("tampered").to_string();
+    assert!(err.contains("b_q_labels.png"), "{err}");
+    // Overwriting with a dataset of full shapes removes the old images.
+    let mut writer = DatasetWriter::create(dir.path(), true).expect("create");
+    writer.write(&synthetic::hinge_pair("full", 4, 0.5)).expect("write");
+    writer.finish(origin()).expect("finish");
+    assert!(!dir.path().join("images").exists());
+}
+
+#[test]
+fn scanned_pairs_without_their_images_or_with_stray_paths_are_refused() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let mut writer = DatasetWriter::create(dir.path(), false).expect("create");
+    let (pair, images) = scanned_pair("a");
+    let err = writer.write(&pair).expect_err("no images").to_string();
+    assert!(err.contains("without its images"), "{err}");
+    let (other, _) = scanned_pair("../escape");
+    let err = writer.write_scanned(&other, &images).expect_err("stray path").to_string();
+    assert!(err.contains("not a file name under images/"), "{err}");
+    let full = synthetic::hinge_pair("full", 4, 0.5);
+    let err = writer.write_scanned(&full, &images).expect_err("no scan").to_string();
+    assert!(err.contains("no scan record"), "{err}");
+}

@@ -122,6 +122,11 @@ impl Manifest {
 }
 
 impl FileEntry {
+    /// Size and sha256 of bytes about to be written.
+    pub fn of_bytes(bytes: &[u8]) -> Self {
+        Self { bytes: bytes.len() as u64, sha256: hex(&Sha256::digest(bytes)) }
+    }
+
     /// Size and sha256 of a file, read in a stream.
     pub fn of(path: &Path) -> Result<Self, DatasetError> {
         let file = File::open(path).map_err(DatasetError::io(path))?;
@@ -137,7 +142,10 @@ impl FileEntry {
             hasher.update(&buf[..n]);
             bytes += n as u64;
         }
-        let sha256 = hasher.finalize().iter().map(|b| format!("{b:02x}")).collect();
-        Ok(Self { bytes, sha256 })
+        Ok(Self { bytes, sha256: hex(&hasher.finalize()) })
     }
+}
+
+fn hex(digest: &[u8]) -> String {
+    digest.iter().map(|b| format!("{b:02x}")).collect()
 }

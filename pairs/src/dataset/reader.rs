@@ -13,6 +13,7 @@ use super::schema::{decode_record, PAIR_ENCODING, PAIR_SCHEMA, PAIR_TOPIC, SCHEM
 use super::writer::PAIRS_FILE;
 use crate::error::DatasetError;
 use crate::pair::Pair;
+use crate::scan::{PairImages, Scan, ScanImages};
 
 /// Largest record the reader buffers; a corrupt length field beyond it is an error, not an
 /// allocation.
@@ -45,6 +46,24 @@ impl Dataset {
     /// Checks every file against the sizes and checksums of the manifest.
     pub fn verify(&self) -> Result<(), DatasetError> {
         self.manifest.verify(&self.dir)
+    }
+
+    /// The PNG bytes of a pair's scan images, read from the dataset folder (empty for
+    /// full shapes).
+    pub fn read_images(&self, pair: &Pair) -> Result<PairImages, DatasetError> {
+        let read = |scan: &Option<Scan>| -> Result<Option<ScanImages<Vec<u8>>>, DatasetError> {
+            let Some(scan) = scan else { return Ok(None) };
+            let file = |rel: &String| {
+                let path = self.dir.join(rel);
+                std::fs::read(&path).map_err(DatasetError::io(&path))
+            };
+            Ok(Some(ScanImages {
+                depth: file(&scan.images.depth)?,
+                labels: file(&scan.images.labels)?,
+                colour: file(&scan.images.colour)?,
+            }))
+        };
+        Ok(PairImages { p: read(&pair.scans().p)?, q: read(&pair.scans().q)? })
     }
 
     /// Streams the pairs in file order; the stream ends with an error if the file holds fewer

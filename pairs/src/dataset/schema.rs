@@ -11,6 +11,7 @@ use crate::joints::{JointKind, JointTruth};
 use crate::math::{Matrix3, Point3, Real, Vector3};
 use crate::pair::{Pair, PairInput, PairKind, Provenance};
 use crate::parts::PartId;
+use crate::scan::{Intrinsics, Scan, ScanImages, Scans};
 use crate::transform::Similarity;
 
 /// Topic of the pair records.
@@ -96,6 +97,35 @@ pub struct PairRecord {
     pub joints: Vec<JointRecord>,
     /// Where the pair came from.
     pub provenance: Provenance,
+    /// P's camera, for a scanned P (SP2P); absent otherwise.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub scan_p: Option<ScanRecord>,
+    /// Q's camera, for a scanned Q (SF2P, SP2P); absent otherwise.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub scan_q: Option<ScanRecord>,
+}
+
+/// The camera of one scanned side (conventions in `crate::scan`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ScanRecord {
+    /// Image width, pixels.
+    pub width: u32,
+    /// Image height, pixels.
+    pub height: u32,
+    /// Intrinsics `[fx, fy, cx, cy]`, pixels.
+    pub intrinsics: [Real; 4],
+    /// Camera-to-object rotation, row-major.
+    pub rotation: [Real; 9],
+    /// Camera-to-object translation (the camera centre), object units.
+    pub translation: [Real; 3],
+    /// Object units per unit of the depth PNG.
+    pub depth_scale: Real,
+    /// Depth PNG path, relative to the dataset folder.
+    pub depth: String,
+    /// Part-label PNG path, relative to the dataset folder.
+    pub labels: String,
+    /// Colour PNG path, relative to the dataset folder.
+    pub colour: String,
 }
 
 impl PairRecord {
@@ -122,6 +152,8 @@ impl PairRecord {
             ),
             joints: truth.joints.iter().map(joint_record).collect(),
             provenance: pair.provenance().clone(),
+            scan_p: pair.scans().p.as_ref().map(scan_record),
+            scan_q: pair.scans().q.as_ref().map(scan_record),
         }
     }
 
@@ -185,7 +217,9 @@ impl PairRecord {
             corr_index,
             joints: self.joints.iter().map(joint_truth).collect(),
         };
-        Pair::new(PairInput { id, kind: self.kind, p, q }, truth, self.provenance)
+        let scans = Scans { p: self.scan_p.map(scan), q: self.scan_q.map(scan) };
+        Pair::new(PairInput { id, kind: self.kind, p, q }, truth, self.provenance)?
+            .with_scans(scans)
     }
 }
 
@@ -215,11 +249,37 @@ fn cloud_record(c: &Cloud) -> CloudRecord {
     }
 }
 
+fn row_major(r: &Matrix3) -> [Real; 9] {
+    [r.m11, r.m12, r.m13, r.m21, r.m22, r.m23, r.m31, r.m32, r.m33]
+}
+
 fn motion_record(m: &Similarity) -> MotionRecord {
-    let r = &m.rotation;
-    MotionRecord {
-        rotation: [r.m11, r.m12, r.m13, r.m21, r.m22, r.m23, r.m31, r.m32, r.m33],
-        translation: m.translation.into(),
+    MotionRecord { rotation: row_major(&m.rotation), translation: m.translation.into() }
+}
+
+fn scan_record(s: &Scan) -> ScanRecord {
+    let k = &s.intrinsics;
+    ScanRecord {
+        width: k.width,
+        height: k.height,
+        intrinsics: [k.fx, k.fy, k.cx, k.cy],
+        rotation: row_major(&s.rotation),
+        translation: s.translation.into(),
+        depth_scale: s.depth_scale,
+        depth: s.images.depth.clone(),
+        labels: s.images.labels.clone(),
+        colour: s.images.colour.clone(),
+    }
+}
+
+fn scan(r: ScanRecord) -> Scan {
+    let [fx, fy, cx, cy] = r.intrinsics;
+    Scan {
+        intrinsics: Intrinsics { width: r.width, height: r.height, fx, fy, cx, cy },
+        rotation: Matrix3::from_row_slice(&r.rotation),
+        translation: Vector3::from(r.translation),
+        depth_scale: r.depth_scale,
+        images: ScanImages { depth: r.depth, labels: r.labels, colour: r.colour },
     }
 }
 

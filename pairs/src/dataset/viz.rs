@@ -48,6 +48,40 @@ pub const POINT_CLOUD_JSON_SCHEMA: &str = r#"{
   }
 }"#;
 
+/// Schema name Foxglove recognises for PNG or JPEG images.
+pub const COMPRESSED_IMAGE_SCHEMA: &str = "foxglove.CompressedImage";
+
+/// JSON schema of `foxglove.CompressedImage`.
+pub const COMPRESSED_IMAGE_JSON_SCHEMA: &str = r#"{
+  "title": "foxglove.CompressedImage",
+  "description": "A compressed image",
+  "type": "object",
+  "properties": {
+    "timestamp": {"type": "object", "title": "time", "properties": {
+      "sec": {"type": "integer", "minimum": 0},
+      "nsec": {"type": "integer", "minimum": 0, "maximum": 999999999}}},
+    "frame_id": {"type": "string"},
+    "data": {"type": "string", "contentEncoding": "base64"},
+    "format": {"type": "string"}
+  }
+}"#;
+
+/// Topic of one image of one side: `/viz/<side>/<kind>` (e.g. `/viz/q/depth`).
+pub fn image_topic(side: &str, kind: &str) -> String {
+    format!("/viz/{side}/{kind}")
+}
+
+/// The JSON bytes of a `foxglove.CompressedImage` holding `png`, stamped at `sec` seconds.
+pub fn image_message(png: &[u8], sec: u64) -> Vec<u8> {
+    let message = json!({
+        "timestamp": {"sec": sec, "nsec": 0},
+        "frame_id": VIZ_FRAME,
+        "data": base64::engine::general_purpose::STANDARD.encode(png),
+        "format": "png",
+    });
+    serde_json::to_vec(&message).expect("a JSON value always serialises")
+}
+
 /// Bytes per point: x, y, z as f32 then red, green, blue, alpha as u8.
 const STRIDE: usize = 16;
 const FLOAT32: u8 = 7;

@@ -16,10 +16,12 @@ use super::manifest::{
 };
 use super::schema::{encode_pair, PAIR_ENCODING, PAIR_SCHEMA, PAIR_TOPIC, SCHEMA_VERSION};
 use super::viz::{
-    self, POINT_CLOUD_JSON_SCHEMA, POINT_CLOUD_SCHEMA, VIZ_OFFSET, VIZ_P_TOPIC, VIZ_Q_TOPIC,
+    self, COMPRESSED_IMAGE_JSON_SCHEMA, COMPRESSED_IMAGE_SCHEMA, POINT_CLOUD_JSON_SCHEMA,
+    POINT_CLOUD_SCHEMA, VIZ_OFFSET, VIZ_P_TOPIC, VIZ_Q_TOPIC,
 };
 use crate::error::DatasetError;
 use crate::pair::Pair;
+use crate::scan::{PairImages, Scan, ScanImages, IMAGES_DIR};
 
 /// Name of the MCAP file in a dataset folder.
 pub const PAIRS_FILE: &str = "pairs.mcap";
@@ -42,12 +44,17 @@ pub struct DatasetWriter {
     channels: Channels,
     counts: Counts,
     objects: BTreeSet<u32>,
+    /// Image files written so far, by path relative to the dataset folder.
+    images: BTreeMap<String, FileEntry>,
 }
 
 struct Channels {
     pair: u16,
     viz_p: u16,
     viz_q: u16,
+    /// Image channels by topic, added when the first scanned pair comes, so that datasets
+    /// of full shapes do not list them.
+    images: BTreeMap<String, u16>,
 }
 
 fn partial(dir: &Path, name: &str) -> PathBuf {
@@ -64,6 +71,11 @@ impl DatasetWriter {
             return Err(DatasetError::Exists { dir: dir.into() });
         }
         std::fs::create_dir_all(dir).map_err(DatasetError::io(dir))?;
+        let images_partial = partial(dir, IMAGES_DIR);
+        if images_partial.exists() {
+            // Left by an interrupted run; never part of a finished dataset.
+            std::fs::remove_dir_all(&images_partial).map_err(DatasetError::io(&images_partial))?;
+        }
         let mcap_path = partial(dir, PAIRS_FILE);
         let file = File::create(&mcap_path).map_err(DatasetError::io(&mcap_path))?;
         // One compression thread: multithreaded zstd output depends on the machine's core
@@ -87,12 +99,35 @@ impl DatasetWriter {
             channels,
             counts: Counts::default(),
             objects: BTreeSet::new(),
+            images: BTreeMap::new(),
         })
     }
 
-    /// Appends one pair: its record, its two visualisation clouds and its index row.
+    /// Appends one pair of full shapes: its record, its two visualisation clouds and its
+    /// index row. A pair with scanned sides needs [`write_scanned`](Self::write_scanned).
     pub fn write(&mut self, pair: &Pair) -> Result<(), DatasetError> {
+        self.write_scanned(pair, &PairImages::default())
+    }
+
+    /// Appends one pair with the PNG images of its scanned sides: the images go to the
+    /// paths its scan records name (under `images/`) and to Foxglove image channels.
+    pub fn write_scanned(&mut self, pair: &Pair, images: &PairImages) -> Result<(), DatasetError> {
         let seq = self.counts.pairs;
+        let sides = [("p", &pair.scans().p, &images.p), ("q", &pair.scans().q, &images.q)];
+        for (side, scan, pngs) in sides {
+            match (scan, pngs) {
+                (None, None) => {}
+                (Some(scan), Some(pngs)) => self.write_images(pair.id(), side, scan, pngs, seq)?,
+                (scan, _) => {
+                    let reason = if scan.is_some() {
+                        format!("side {side} is scanned but came without its images")
+                    } else {
+                        format!("side {side} has images but no scan record")
+                    };
+                    return Err(DatasetError::Images { pair: pair.id().into(), reason });
+                }
+            }
+        }
         let (input, truth) = (pair.input(), pair.truth());
         let messages = [
             (self.channels.pair, encode_pair(pair)),
@@ -106,15 +141,7 @@ impl DatasetWriter {
             ),
         ];
         for (channel_id, data) in messages {
-            let header = MessageHeader {
-                channel_id,
-                sequence: seq as u32,
-                log_time: seq * PAIR_PERIOD_NS,
-                publish_time: seq * PAIR_PERIOD_NS,
-            };
-            self.mcap
-                .write_to_known_channel(&header, &data)
-                .map_err(DatasetError::mcap(&self.mcap_path))?;
+            self.write_message(channel_id, seq, &data)?;
         }
         self.index
             .serialize(IndexRow::of(pair))
@@ -125,6 +152,68 @@ impl DatasetWriter {
         *self.counts.kinds.entry(input.kind.as_str().into()).or_default() += 1;
         self.objects.insert(prov.object_id);
         Ok(())
+    }
+
+    /// Writes the images of one scanned side and their Foxglove messages.
+    fn write_images(
+        &mut self,
+        pair: &str,
+        side: &str,
+        scan: &Scan,
+        pngs: &ScanImages<Vec<u8>>,
+        seq: u64,
+    ) -> Result<(), DatasetError> {
+        let dir = partial(&self.dir, IMAGES_DIR);
+        if self.images.is_empty() {
+            std::fs::create_dir_all(&dir).map_err(DatasetError::io(&dir))?;
+        }
+        for ((kind, path), (_, png)) in scan.images.iter().into_iter().zip(pngs.iter()) {
+            let name = path
+                .strip_prefix(IMAGES_DIR)
+                .and_then(|rest| rest.strip_prefix('/'))
+                .filter(|name| !name.is_empty() && !name.contains(['/', '\\']) && *name != "..")
+                .ok_or_else(|| DatasetError::Images {
+                    pair: pair.into(),
+                    reason: format!(
+                        "{kind} image path {path:?} is not a file name under {IMAGES_DIR}/"
+                    ),
+                })?;
+            if self.images.contains_key(path.as_str()) {
+                let reason = format!("{kind} image path {path:?} is used twice");
+                return Err(DatasetError::Images { pair: pair.into(), reason });
+            }
+            let file = dir.join(name);
+            std::fs::write(&file, png).map_err(DatasetError::io(&file))?;
+            self.images.insert(path.clone(), FileEntry::of_bytes(png));
+            let topic = viz::image_topic(side, kind);
+            let channel = match self.channels.images.get(&topic) {
+                Some(&c) => c,
+                None => {
+                    let c = add_image_channel(&mut self.mcap, &topic)
+                        .map_err(DatasetError::mcap(&self.mcap_path))?;
+                    self.channels.images.insert(topic, c);
+                    c
+                }
+            };
+            self.write_message(channel, seq, &viz::image_message(png, seq))?;
+        }
+        Ok(())
+    }
+
+    /// Writes one message stamped with the pair's time.
+    fn write_message(
+        &mut self,
+        channel_id: u16,
+        seq: u64,
+        data: &[u8],
+    ) -> Result<(), DatasetError> {
+        let header = MessageHeader {
+            channel_id,
+            sequence: seq as u32,
+            log_time: seq * PAIR_PERIOD_NS,
+            publish_time: seq * PAIR_PERIOD_NS,
+        };
+        self.mcap.write_to_known_channel(&header, data).map_err(DatasetError::mcap(&self.mcap_path))
     }
 
     /// Number of pairs written so far.
@@ -168,6 +257,15 @@ impl DatasetWriter {
             std::fs::rename(&from, &to).map_err(DatasetError::io(&to))?;
             files.insert(name.to_string(), FileEntry::of(&to)?);
         }
+        let images = self.dir.join(IMAGES_DIR);
+        if images.exists() {
+            std::fs::remove_dir_all(&images).map_err(DatasetError::io(&images))?;
+        }
+        if !self.images.is_empty() {
+            let from = partial(&self.dir, IMAGES_DIR);
+            std::fs::rename(&from, &images).map_err(DatasetError::io(&images))?;
+            files.append(&mut self.images);
+        }
         self.counts.objects = self.objects.len() as u64;
         let manifest = Manifest {
             format: FORMAT_NAME.into(),
@@ -197,5 +295,14 @@ fn add_channels(mcap: &mut Writer<BufWriter<File>>) -> mcap::McapResult<Channels
         mcap.add_schema(POINT_CLOUD_SCHEMA, "jsonschema", POINT_CLOUD_JSON_SCHEMA.as_bytes())?;
     let viz_p = mcap.add_channel(schema, VIZ_P_TOPIC, "json", &BTreeMap::new())?;
     let viz_q = mcap.add_channel(schema, VIZ_Q_TOPIC, "json", &BTreeMap::new())?;
-    Ok(Channels { pair, viz_p, viz_q })
+    Ok(Channels { pair, viz_p, viz_q, images: BTreeMap::new() })
+}
+
+fn add_image_channel(mcap: &mut Writer<BufWriter<File>>, topic: &str) -> mcap::McapResult<u16> {
+    let schema = mcap.add_schema(
+        COMPRESSED_IMAGE_SCHEMA,
+        "jsonschema",
+        COMPRESSED_IMAGE_JSON_SCHEMA.as_bytes(),
+    )?;
+    mcap.add_channel(schema, topic, "json", &BTreeMap::new())
 }
