@@ -4,7 +4,7 @@
 use std::path::Path;
 
 use pairs::dataset::{DatasetOrigin, DatasetWriter, Manifest, Shard};
-use pairs::math::{Isometry3, Real};
+use pairs::math::{Isometry3, Point3, Real};
 use pairs::parts::part_sizes;
 use pairs::scan::{PairImages, ScanImages};
 use pairs::{Cloud, DatasetError, Pair, PairError, PairInput, PairKind, Provenance, Scan, Scans};
@@ -17,7 +17,7 @@ use crate::label::{ground_truth, merge_links, Parts, Side};
 use crate::objects::{ArticulatedObject, ObjectError};
 use crate::protocol::{candidate_pairs, draw_state, global_pose};
 use crate::sampling::{SurfacePoint, SurfaceSampler};
-use crate::scan::scene::{PosedScene, SceneError};
+use crate::scan::scene::SceneError;
 use crate::scan::visibility::is_visible;
 use crate::scan::{images, scan_side, Requirements, ScannedSide, SURFACE_TOLERANCE};
 use crate::seed::{rng_for, Rng, Stream};
@@ -303,9 +303,17 @@ fn pair_id(variant: Variant, object: u32, pair: usize) -> String {
     }
 }
 
-/// The diagonal of the posed object's bounding box.
+/// The diagonal of the posed object's bounding box (no ray-casting mesh needed).
 fn object_size(object: &ArticulatedObject, poses: &[Isometry3]) -> Result<Real, GenerateError> {
-    Ok(PosedScene::new(object, poses)?.diagonal())
+    let (min, max) = object
+        .links
+        .iter()
+        .zip(poses)
+        .flat_map(|(l, pose)| l.mesh.vertices.iter().map(move |v| pose * v))
+        .fold((Point3::from([Real::MAX; 3]), Point3::from([Real::MIN; 3])), |(lo, hi), v| {
+            (lo.inf(&v), hi.sup(&v))
+        });
+    Ok((max - min).norm())
 }
 
 /// One side's points: N surface samples, or a scan when `parts` is given.
