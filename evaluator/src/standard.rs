@@ -13,8 +13,8 @@ use baselines::{
 use burn::prelude::Device;
 use model::checkpoint::load_weights;
 use model::config::TrainConfig;
+use model::method::NetworkMethod;
 use model::network::PartNet;
-use model::predict::NetworkMethod;
 use pairs::{Method, Segmenter};
 use sha2::{Digest, Sha256};
 

@@ -1,0 +1,157 @@
+//! The paper's inference procedure ("Iterative Segmentation and Motion Estimation"): a first
+//! pass gives a flow, soft segments, hard labels and one rigid motion per segment; then P is
+//! deformed piecewise rigidly by those motions into P', the correspondence and flow modules
+//! run on (P', Q) for a residual flow f', the refined flow `P' - P + f'` is segmented again,
+//! and so on until the flow changes by less than a tolerance or after 10 iterations. An
+//! optional rotation search ([`crate::rotation_search`]) picks P's initial orientation.
+
+use pairs::math::{Matrix3, Point3, Real, Vector3};
+use pairs::{PairInput, Prediction};
+
+use crate::labels::{segment_pair, HardLabelParams};
+use crate::network::PartNet;
+use crate::sampling::SamplingError;
+
+/// Parameters of the inference procedure.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct InferenceParams {
+    /// The hard-label step's parameters.
+    pub labels: HardLabelParams,
+    /// Most passes, the first included (paper: 10; 1 is the single pass).
+    pub max_iterations: usize,
+    /// Stop when the mean change of the flow between two passes is below this (normalised
+    /// units: the clouds' bounding-box diagonals are 1).
+    pub tolerance: Real,
+    /// Search 48 rotations of P for the initial orientation (paper: when the pair's
+    /// orientations are inconsistent; off by default).
+    pub rotation_search: bool,
+}
+
+impl Default for InferenceParams {
+    fn default() -> Self {
+        Self::iterative()
+    }
+}
+
+impl InferenceParams {
+    /// The paper's iterative procedure: up to 10 passes, tolerance 1e-3, no rotation search.
+    pub fn iterative() -> Self {
+        Self {
+            labels: HardLabelParams::default(),
+            max_iterations: 10,
+            tolerance: 1e-3,
+            rotation_search: false,
+        }
+    }
+
+    /// One pass only (the `net` row).
+    pub fn single_pass() -> Self {
+        Self { max_iterations: 1, ..Self::iterative() }
+    }
+}
+
+/// One pass of the procedure, in P's original frame.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Iteration {
+    /// The flow, hard labels of P and Q, motions, mask and soft segments after this pass.
+    pub prediction: Prediction,
+    /// Mean norm of the flow's change from the previous pass (infinite for the first).
+    pub change: Real,
+}
+
+/// The whole procedure's record.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Inference {
+    /// The rotation applied to P before the first pass (identity without search).
+    pub rotation: Matrix3,
+    /// Every pass, the first one first; the last is the result.
+    pub iterations: Vec<Iteration>,
+}
+
+impl Inference {
+    /// The last pass's prediction.
+    pub fn prediction(&self) -> Prediction {
+        self.iterations.last().map(|it| it.prediction.clone()).unwrap_or_default()
+    }
+}
+
+/// `input` with P's points replaced by `points` (its normalisation kept).
+fn with_p(input: &PairInput, points: Vec<Point3>) -> PairInput {
+    let mut moved = input.clone();
+    moved.p.points = points;
+    moved
+}
+
+impl PartNet {
+    /// Runs the procedure of the module docs on `input`.
+    pub fn infer(
+        &self,
+        input: &PairInput,
+        params: &InferenceParams,
+    ) -> Result<Inference, SamplingError> {
+        let rotation = if params.rotation_search {
+            self.search_rotation(input)?.rotation
+        } else {
+            Matrix3::identity()
+        };
+        let original = &input.p.points;
+        let rotated =
+            with_p(input, original.iter().map(|x| Point3::from(rotation * x.coords)).collect());
+        let start = &rotated.p.points;
+        let mut iterations: Vec<Iteration> = Vec::new();
+        let mut deformed = rotated.clone();
+        for _ in 0..params.max_iterations.max(1) {
+            let (residual, mask) = self.flow_pass(&deformed)?;
+            // The refined flow of the rotated P: (P' - P) + f'.
+            let flow: Vec<Vector3> = deformed
+                .p
+                .points
+                .iter()
+                .zip(start)
+                .zip(&residual)
+                .map(|((moved, x), f)| moved - x + f)
+                .collect();
+            let probs = self.soft_segments(&rotated, &flow)?;
+            let seg = segment_pair(start, &input.q.points, &probs, &flow, &params.labels);
+            deformed = with_p(
+                &rotated,
+                start
+                    .iter()
+                    .zip(&seg.labels_p)
+                    .map(|(x, &l)| seg.motions[l as usize].apply(x))
+                    .collect(),
+            );
+            // Back to P's original frame: the flow of x is R x + f - x, each motion M ∘ R.
+            let flow_original: Vec<Vector3> =
+                original.iter().zip(start).zip(&flow).map(|((x, r), f)| r + f - x).collect();
+            let change = iterations.last().and_then(|last| last.prediction.flow.as_ref()).map_or(
+                Real::INFINITY,
+                |previous| {
+                    let total: Real =
+                        previous.iter().zip(&flow_original).map(|(a, b)| (a - b).norm()).sum();
+                    total / flow_original.len().max(1) as Real
+                },
+            );
+            let motions = seg
+                .motions
+                .iter()
+                .map(|m| pairs::transform::Similarity { rotation: m.rotation * rotation, ..*m })
+                .collect();
+            iterations.push(Iteration {
+                prediction: Prediction {
+                    flow: Some(flow_original),
+                    segments_p: seg.labels_p,
+                    segments_q: seg.labels_q,
+                    motions,
+                    corr_mask: Some(mask),
+                    segment_probs: Some(seg.probs),
+                },
+                change,
+            });
+            if change < params.tolerance {
+                break;
+            }
+        }
+        Ok(Inference { rotation, iterations })
+    }
+}
