@@ -39,7 +39,7 @@ impl KnnGraph {
                 edges.push((i.min(j), i.max(j), w));
             }
         }
-        edges.sort_by(|a, b| (a.0, a.1).cmp(&(b.0, b.1)));
+        edges.sort_by_key(|e| (e.0, e.1));
         edges.dedup_by(|a, b| a.0 == b.0 && a.1 == b.1);
         Self { nodes: n, edges }
     }
