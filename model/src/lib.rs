@@ -23,6 +23,8 @@
 //! ```
 #![deny(missing_docs)]
 
+pub mod animation;
+pub mod apps;
 pub mod backbone;
 pub mod batch;
 pub mod checkpoint;
@@ -39,6 +41,7 @@ pub mod method;
 pub mod network;
 pub mod objective;
 pub mod plot;
+pub mod pointfile;
 pub mod pointnet;
 pub mod predict;
 pub mod rotation;
