@@ -1,6 +1,7 @@
 //! The paper's Table 3: the iterative network (`net-iter`) scored after every pass, as
 //! `iterations.csv` (one row per dataset and iteration: EPE, RI, IoU, and how many pairs
-//! were still changing) and `iterations.svg`/`.png` (the three curves). A pair that
+//! were still changing) and `iterations.svg`/`.png` (the three curves); and `joints.csv`,
+//! the joints estimated from its first and last passes ([`crate::joints`]). A pair that
 //! converged before iteration t keeps its last pass's prediction at t, as the procedure
 //! stops there. Averages follow the leaderboards: EPE and RI over pairs, IoU over all
 //! ground-truth parts of all pairs.
@@ -15,6 +16,7 @@ use plotters::prelude::*;
 
 use crate::error::EvalError;
 use crate::files::replace_file;
+use crate::joints::{median, JointScores};
 use crate::plots::PALETTE;
 
 /// The scores of one iteration on one dataset.
@@ -40,8 +42,27 @@ pub struct IterationRow {
 /// are skipped (with a warning) so one bad pair does not hide the table.
 type PairScores = Vec<(f64, f64, f64, usize)>;
 
-fn score_pair(method: &NetworkMethod, pair: &Pair) -> Result<PairScores, String> {
+/// The joint scores of the first pass (`net`) and of the last (`net-iter`) on one dataset.
+#[derive(Debug, Clone, PartialEq)]
+pub struct JointRow {
+    /// Dataset name.
+    pub dataset: String,
+    /// `net` (the first pass) or `net-iter` (the last).
+    pub method: String,
+    /// The scores.
+    pub scores: JointScores,
+}
+
+fn score_pair(
+    method: &NetworkMethod,
+    pair: &Pair,
+    joints: &mut [JointScores; 2],
+) -> Result<PairScores, String> {
     let inference = method.infer(pair.input()).map_err(|e| e.to_string())?;
+    if let (Some(first), Some(last)) = (inference.iterations.first(), inference.iterations.last()) {
+        joints[0].add(pair, &first.prediction);
+        joints[1].add(pair, &last.prediction);
+    }
     let truth = pair.truth();
     inference
         .iterations
@@ -57,16 +78,18 @@ fn score_pair(method: &NetworkMethod, pair: &Pair) -> Result<PairScores, String>
         .collect()
 }
 
-/// Scores every iteration of `method` on `pairs`; `tick` is called after each pair.
+/// Scores every iteration of `method` on `pairs`, and the joints of its first and last
+/// passes; `tick` is called after each pair.
 pub fn iteration_table(
     method: &NetworkMethod,
     dataset: &str,
     pairs: &[Pair],
     mut tick: impl FnMut(),
-) -> Vec<IterationRow> {
+) -> (Vec<IterationRow>, Vec<JointRow>) {
     let mut scored: Vec<PairScores> = Vec::with_capacity(pairs.len());
+    let mut joints = [JointScores::default(), JointScores::default()];
     for pair in pairs {
-        match score_pair(method, pair) {
+        match score_pair(method, pair, &mut joints) {
             Ok(s) if !s.is_empty() => scored.push(s),
             Ok(_) => {}
             Err(e) => tracing::warn!("{dataset} pair {}: {e}", pair.id()),
@@ -74,7 +97,12 @@ pub fn iteration_table(
         tick();
     }
     let most = scored.iter().map(Vec::len).max().unwrap_or(0);
-    (0..most)
+    let [first, last] = joints;
+    let joint_rows = [("net", first), ("net-iter", last)]
+        .into_iter()
+        .map(|(m, scores)| JointRow { dataset: dataset.to_owned(), method: m.to_owned(), scores })
+        .collect();
+    let rows = (0..most)
         .map(|t| {
             let at: Vec<&(f64, f64, f64, usize)> =
                 scored.iter().map(|s| &s[t.min(s.len() - 1)]).collect();
@@ -90,11 +118,16 @@ pub fn iteration_table(
                 iou: at.iter().map(|s| s.2).sum::<f64>() / parts.max(1) as f64,
             }
         })
-        .collect()
+        .collect();
+    (rows, joint_rows)
 }
 
-/// Writes `iterations.csv` and the plot into `dir`; returns the files written.
-pub fn write_iterations(dir: &Path, rows: &[IterationRow]) -> Result<Vec<PathBuf>, EvalError> {
+/// Writes `iterations.csv`, the plot and `joints.csv` into `dir`; returns the files written.
+pub fn write_iterations(
+    dir: &Path,
+    rows: &[IterationRow],
+    joint_rows: &[JointRow],
+) -> Result<Vec<PathBuf>, EvalError> {
     let csv = dir.join("iterations.csv");
     let io = |path: &Path| {
         let path = path.to_path_buf();
@@ -112,7 +145,28 @@ pub fn write_iterations(dir: &Path, rows: &[IterationRow]) -> Result<Vec<PathBuf
         }
         Ok(())
     })?;
-    let mut written = vec![csv];
+    let joints_csv = dir.join("joints.csv");
+    replace_file(&joints_csv, |w| {
+        writeln!(w, "dataset,method,joints,type_accuracy,estimated,median_axis_error_deg,median_pivot_distance")
+            .map_err(io(&joints_csv))?;
+        for r in joint_rows {
+            let s = &r.scores;
+            writeln!(
+                w,
+                "{},{},{},{:.4},{},{:.3},{:.4}",
+                r.dataset,
+                r.method,
+                s.joints,
+                s.type_accuracy(),
+                s.axis_errors.len(),
+                median(&s.axis_errors),
+                median(&s.pivot_distances)
+            )
+            .map_err(io(&joints_csv))?;
+        }
+        Ok(())
+    })?;
+    let mut written = vec![csv, joints_csv];
     for (path, text) in [(dir.join("iterations.svg"), true), (dir.join("iterations.png"), false)] {
         let message = |e: String| EvalError::Plot { path: path.clone(), message: e };
         if text {

@@ -8,6 +8,7 @@ use anyhow::{Context, Result};
 use clap::Parser;
 use evaluator::datasets::{default_datasets, load_dataset, DatasetSpec};
 use evaluator::iterations::{iteration_table, write_iterations};
+use evaluator::joints;
 use evaluator::pipeline::{evaluate, Options, Progress};
 use evaluator::standard::{iterative_network, load_network, standard_registry, DEFAULT_WEIGHTS};
 use indicatif::{ProgressBar, ProgressStyle};
@@ -168,7 +169,7 @@ fn write_iteration_table(
     let (net, _) = load_network(weights)
         .with_context(|| format!("loading the network from {}", weights.display()))?;
     let method = iterative_network(net);
-    let mut rows = Vec::new();
+    let (mut rows, mut joint_rows) = (Vec::new(), Vec::new());
     for spec in specs.iter().filter(|s| selected.is_empty() || selected.contains(&s.name)) {
         let dataset = load_dataset(&spec.name, &spec.dir(&options.datasets_root), options.limit)
             .with_context(|| format!("loading dataset {}", spec.name))?;
@@ -178,15 +179,29 @@ fn write_iteration_table(
                 .progress_chars("=> "),
         );
         bar.set_message(format!("net-iter iterations on {}", spec.name));
-        rows.extend(iteration_table(&method, &spec.name, &dataset.pairs, || bar.inc(1)));
+        let (table, joints) = iteration_table(&method, &spec.name, &dataset.pairs, || bar.inc(1));
+        rows.extend(table);
+        joint_rows.extend(joints);
         bar.finish_and_clear();
     }
-    let files = write_iterations(reports, &rows)
+    let files = write_iterations(reports, &rows, &joint_rows)
         .with_context(|| format!("writing the iteration table into {}", reports.display()))?;
     for row in &rows {
         eprintln!(
             "{} iteration {:2}: EPE {:.4} RI {:.4} IoU {:.4} ({} of {} pairs still running)",
             row.dataset, row.iteration, row.epe, row.rand_index, row.iou, row.running, row.pairs
+        );
+    }
+    for row in &joint_rows {
+        let s = &row.scores;
+        eprintln!(
+            "{} {} joints: {} of {} typed right, median axis error {:.1}°, median pivot distance {:.3}",
+            row.dataset,
+            row.method,
+            s.type_correct,
+            s.joints,
+            joints::median(&s.axis_errors),
+            joints::median(&s.pivot_distances)
         );
     }
     eprintln!(

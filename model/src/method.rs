@@ -65,6 +65,7 @@ impl Segmenter for NetworkMethod {
             return Err(MethodError::new(&self.name, &input.id, msg));
         }
         let net = self.net.lock().unwrap_or_else(PoisonError::into_inner);
-        net.segment_flow(input, flow).map_err(|e| MethodError::new(&self.name, &input.id, e))
+        net.segment_flow_with(input, flow, &self.params.labels)
+            .map_err(|e| MethodError::new(&self.name, &input.id, e))
     }
 }

@@ -2,16 +2,17 @@
 //! correspondence subset to every point of P ([`PartNet::flow_pass`]), and the segmentation
 //! module's soft segment probabilities on every point ([`PartNet::soft_segments`]: RPEN
 //! steps until the continuation score drops below one half). [`PartNet::predict`] turns them
-//! into a [`Prediction`] with the graph cut of [`crate::labels`]; the iterative refinement
-//! and the rotation search are in [`crate::inference`].
+//! into the raw network's [`Prediction`] (argmax labels), as the trainer validates it; the
+//! whole inference procedure (graph cut, iterations, rotation search) is
+//! [`PartNet::infer`] in [`crate::inference`].
 
 use burn::prelude::*;
 use burn::tensor::activation;
 use pairs::math::{Matrix3, Vector3};
+use pairs::segments::complete_prediction;
 use pairs::{PairInput, Prediction};
 
 use crate::batch::{points_tensor, Prepared};
-use crate::inference::InferenceParams;
 use crate::labels::{segment_pair, HardLabelParams};
 use crate::network::PartNet;
 use crate::sampling::{three_nn, SamplingError};
@@ -91,28 +92,58 @@ impl PartNet {
         Ok(probs.chunks(steps).map(|row| row[..kept].to_vec()).collect())
     }
 
-    /// The network's single-pass prediction: [`Self::flow_pass`], [`Self::soft_segments`]
-    /// and the hard labels, motions and Q labels of [`segment_pair`] (default parameters).
+    /// The raw network's single pass, as the trainer validates it: [`Self::flow_pass`],
+    /// [`Self::soft_segments`], labels by argmax, one motion per segment and Q labelled
+    /// by its nearest moved point (`pairs::segments`). No calibration and no graph cut: the
+    /// evaluator's `net` row is [`PartNet::infer`] with [`InferenceParams::single_pass`].
     pub fn predict(&self, input: &PairInput) -> Result<Prediction, SamplingError> {
-        Ok(self.infer(input, &InferenceParams::single_pass())?.prediction())
+        let (flow, mask) = self.flow_pass(input)?;
+        let mut prediction = self.segment_flow(input, &flow)?;
+        prediction.flow = Some(flow);
+        prediction.corr_mask = Some(mask);
+        Ok(prediction)
     }
 
     /// The segmentation module alone on a given flow of P (one vector per point, Q's
-    /// normalised units): the network as one more segmenter over any flow source. The
-    /// prediction reports no flow of its own.
+    /// normalised units), labels by argmax as in [`Self::predict`]. The prediction reports
+    /// no flow of its own.
     pub fn segment_flow(
         &self,
         input: &PairInput,
         flow: &[Vector3],
     ) -> Result<Prediction, SamplingError> {
         let probs = self.soft_segments(input, flow)?;
-        let seg = segment_pair(
-            &input.p.points,
-            &input.q.points,
-            &probs,
-            flow,
-            &HardLabelParams::default(),
-        );
+        let raw: Vec<usize> = probs
+            .iter()
+            .map(|row| {
+                (0..row.len())
+                    .max_by(|&a, &b| row[a].total_cmp(&row[b]).then(b.cmp(&a)))
+                    .unwrap_or(0)
+            })
+            .collect();
+        let mut prediction = complete_prediction(input, flow, &raw, false);
+        let mut order: Vec<usize> = Vec::new();
+        for &r in &raw {
+            if !order.contains(&r) {
+                order.push(r);
+            }
+        }
+        prediction.segment_probs =
+            Some(probs.iter().map(|row| order.iter().map(|&o| row[o]).collect()).collect());
+        Ok(prediction)
+    }
+
+    /// The segmentation module on a given flow with the graph-cut labels of
+    /// [`segment_pair`]: the network as one more segmenter over any flow source (the
+    /// evaluator's `net-seg` rows).
+    pub fn segment_flow_with(
+        &self,
+        input: &PairInput,
+        flow: &[Vector3],
+        params: &HardLabelParams,
+    ) -> Result<Prediction, SamplingError> {
+        let probs = self.soft_segments(input, flow)?;
+        let seg = segment_pair(&input.p.points, &input.q.points, &probs, flow, params);
         Ok(Prediction {
             flow: None,
             segments_p: seg.labels_p,
