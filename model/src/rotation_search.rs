@@ -10,7 +10,8 @@
 //! It is deterministic, needs no tables and spreads any `n` evenly (the paper says only
 //! "uniformly sampled"). For n = 48 every rotation is within [`COVERING_RADIUS_DEG`] of one
 //! of the samples (measured on 20,000 random rotations, see the tests): the search's
-//! resolution.
+//! resolution. The candidates are that set turned so that one of them is the identity
+//! ([`search_candidates`]).
 //!
 //! Departure from the paper, for speed on a CPU: candidates are scored on farthest-point
 //! subsets of 64 points by the magnitude of the expected displacement under the
@@ -58,6 +59,16 @@ pub fn super_fibonacci(n: usize) -> Vec<Matrix3> {
             UnitQuaternion::from_quaternion(q).to_rotation_matrix().into_inner()
         })
         .collect()
+}
+
+/// The 48 candidates of the search: the super-Fibonacci set turned so that its first
+/// element is the identity (`R_0ᵀ R_i`; the geodesic distance on SO(3) is invariant under
+/// this, so the covering radius is the same), so that a pair already in a consistent
+/// orientation keeps it when the search finds nothing better.
+pub fn search_candidates() -> Vec<Matrix3> {
+    let set = super_fibonacci(SEARCH_ROTATIONS);
+    let first = set[0].transpose();
+    set.iter().map(|r| first * r).collect()
 }
 
 /// The index of the smallest magnitude (the first of equal ones); 0 when empty.
@@ -128,11 +139,11 @@ impl PartNet {
         Ok(floats(flow.powi_scalar(2).sum_dim(2).sqrt().mean_dim(1))) // [rotations, 1, 1]
     }
 
-    /// The search of the module docs over the 48 super-Fibonacci rotations, scored by the
+    /// The search of the module docs over the 48 [`search_candidates`], scored by the
     /// expected displacement under the matching probabilities on subsets of
     /// [`SEARCH_POINTS`] points.
     pub fn search_rotation(&self, input: &PairInput) -> Result<RotationSearch, SamplingError> {
-        let candidates = super_fibonacci(SEARCH_ROTATIONS);
+        let candidates = search_candidates();
         let points = SEARCH_POINTS.min(self.corr_points());
         let magnitudes = self.flow_magnitudes_with(input, &candidates, points, true)?;
         let index = pick_rotation(&magnitudes);
@@ -168,6 +179,15 @@ mod tests {
     fn the_samples_are_rotations_and_cover_so3() {
         let set = super_fibonacci(SEARCH_ROTATIONS);
         assert_eq!(set.len(), 48);
+        let candidates = search_candidates();
+        assert!((candidates[0] - Matrix3::identity()).amax() < 1e-6);
+        for (i, j) in [(1, 2), (5, 30), (0, 47)] {
+            let (a, b) = (
+                rotation_error_deg(&set[i], &set[j]),
+                rotation_error_deg(&candidates[i], &candidates[j]),
+            );
+            assert!((a - b).abs() < 1e-2, "distances are kept: {a} vs {b}");
+        }
         for r in &set {
             assert!((r.transpose() * r - Matrix3::identity()).amax() < 1e-5);
             assert!((r.determinant() - 1.0).abs() < 1e-5);

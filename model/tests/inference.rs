@@ -9,7 +9,7 @@ use model::config::TrainConfig;
 use model::inference::InferenceParams;
 use model::method::NetworkMethod;
 use model::network::PartNet;
-use model::rotation_search::{super_fibonacci, SEARCH_ROTATIONS};
+use model::rotation_search::{search_candidates, SEARCH_ROTATIONS};
 use model::train::stream_config;
 use pairs::math::Point3;
 use pairs::{Method, Pair};
@@ -60,7 +60,7 @@ fn the_rotation_search_picks_a_candidate_and_answers_in_ps_frame() {
     let input = pair.input();
     let search = net.search_rotation(input).expect("runs");
     assert_eq!(search.magnitudes.len(), SEARCH_ROTATIONS);
-    assert_eq!(search.rotation, super_fibonacci(SEARCH_ROTATIONS)[search.index]);
+    assert_eq!(search.rotation, search_candidates()[search.index]);
     let params = InferenceParams {
         max_iterations: 1,
         rotation_search: true,
