@@ -198,7 +198,9 @@ fn draw<DB: DrawingBackend>(
             .x_label_area_size(40)
             .y_label_area_size(50);
     }
-    let mut chart = builder.build_cartesian_2d(1..last, 0.0..1.0).map_err(fail)?;
+    // A float x axis: plotters' integer ranges loop forever computing key points when the
+    // label count is 0 (the PNG, which has no text).
+    let mut chart = builder.build_cartesian_2d(1.0..last as f64, 0.0..1.0).map_err(fail)?;
     let mut mesh = chart.configure_mesh();
     if text {
         mesh.x_desc("iteration").y_desc("RI, IoU, 1 - EPE/0.2");
@@ -214,8 +216,10 @@ fn draw<DB: DrawingBackend>(
     for (d, dataset) in datasets.iter().enumerate() {
         for (k, (name, metric)) in metrics.iter().enumerate() {
             let colour = PALETTE[(d * 3 + k) % PALETTE.len()];
-            let points =
-                rows.iter().filter(|r| r.dataset == *dataset).map(|r| (r.iteration, metric(r)));
+            let points = rows
+                .iter()
+                .filter(|r| r.dataset == *dataset)
+                .map(|r| (r.iteration as f64, metric(r)));
             let series =
                 chart.draw_series(LineSeries::new(points, colour.stroke_width(2))).map_err(fail)?;
             if text {
@@ -235,4 +239,36 @@ fn draw<DB: DrawingBackend>(
             .map_err(fail)?;
     }
     root.present().map_err(fail)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn writes_the_table_the_joints_and_both_plots() {
+        let dir = tempfile::tempdir().expect("a temp dir");
+        let row = |iteration, epe| IterationRow {
+            dataset: "sf2f".into(),
+            iteration,
+            pairs: 2,
+            running: 2,
+            epe,
+            rand_index: 0.6,
+            iou: 0.4,
+        };
+        let joints = [JointRow {
+            dataset: "sf2f".into(),
+            method: "net-iter".into(),
+            scores: JointScores { joints: 2, type_correct: 1, ..JointScores::default() },
+        }];
+        let files =
+            write_iterations(dir.path(), &[row(1, 0.07), row(2, 0.06)], &joints).expect("written");
+        assert_eq!(files.len(), 4);
+        assert!(files.iter().all(|f| f.exists()));
+        let csv = std::fs::read_to_string(dir.path().join("iterations.csv")).expect("read");
+        assert_eq!(csv.lines().nth(2), Some("sf2f,2,2,2,0.060000,0.600000,0.400000"));
+        let joints_csv = std::fs::read_to_string(dir.path().join("joints.csv")).expect("read");
+        assert!(joints_csv.lines().nth(1).expect("a row").starts_with("sf2f,net-iter,2,0.5000,0,"));
+    }
 }
