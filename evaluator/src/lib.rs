@@ -24,6 +24,8 @@ pub mod datasets;
 pub mod error;
 pub mod files;
 pub mod gallery;
+pub mod iterations;
+pub mod joints;
 pub mod leaderboard;
 pub mod memory;
 pub mod paper;

@@ -1,14 +1,16 @@
 //! `evaluator`: every method on every dataset, scored into the leaderboards under `reports/`.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 use std::time::Instant;
 
 use anyhow::{Context, Result};
 use clap::Parser;
-use evaluator::datasets::default_datasets;
+use evaluator::datasets::{default_datasets, load_dataset, DatasetSpec};
+use evaluator::iterations::{iteration_table, write_iterations};
+use evaluator::joints;
 use evaluator::pipeline::{evaluate, Options, Progress};
-use evaluator::standard::{standard_registry, DEFAULT_WEIGHTS};
+use evaluator::standard::{iterative_network, load_network, standard_registry, DEFAULT_WEIGHTS};
 use indicatif::{ProgressBar, ProgressStyle};
 
 #[derive(Parser, Debug)]
@@ -20,6 +22,7 @@ use indicatif::{ProgressBar, ProgressStyle};
   evaluator --all                                   everything (generates missing datasets)
   evaluator --methods gt,net --limit 50             two rows on the first 50 pairs
   evaluator --methods seqransac@net-flow --force    recompute one row
+  evaluator --methods net,net-iter --iterations --limit 50   Table 3 on 50 pairs
   evaluator --list                                  the registered rows and datasets"
 )]
 struct Args {
@@ -50,6 +53,10 @@ struct Args {
     /// Pairs per dataset in the segmentation gallery.
     #[arg(long, default_value_t = 3)]
     gallery_pairs: usize,
+    /// Also score net-iter after every iteration into <reports>/iterations.csv and
+    /// iterations.svg (the paper's Table 3) on the selected datasets.
+    #[arg(long)]
+    iterations: bool,
     /// List the registered rows and datasets, then exit.
     #[arg(long)]
     list: bool,
@@ -123,6 +130,7 @@ fn run(args: Args) -> Result<()> {
             "nothing to do: pass --all, or narrow with --methods/--datasets (see --help)"
         );
     }
+    let selected = args.datasets.clone();
     let options = Options {
         datasets: args.datasets,
         methods: args.methods,
@@ -143,6 +151,62 @@ fn run(args: Args) -> Result<()> {
         summary.failed,
         started.elapsed().as_secs_f64(),
         summary.reports.display()
+    );
+    if args.iterations {
+        write_iteration_table(&args.weights, &specs, &selected, &options, &summary.reports)?;
+    }
+    Ok(())
+}
+
+/// `--iterations`: net-iter's scores after every pass on each selected dataset.
+fn write_iteration_table(
+    weights: &Path,
+    specs: &[DatasetSpec],
+    selected: &[String],
+    options: &Options,
+    reports: &Path,
+) -> Result<()> {
+    let (net, _) = load_network(weights)
+        .with_context(|| format!("loading the network from {}", weights.display()))?;
+    let method = iterative_network(net);
+    let (mut rows, mut joint_rows) = (Vec::new(), Vec::new());
+    for spec in specs.iter().filter(|s| selected.is_empty() || selected.contains(&s.name)) {
+        let dataset = load_dataset(&spec.name, &spec.dir(&options.datasets_root), options.limit)
+            .with_context(|| format!("loading dataset {}", spec.name))?;
+        let bar = ProgressBar::new(dataset.pairs.len() as u64).with_style(
+            ProgressStyle::with_template("{msg:40} [{bar:30}] {pos}/{len} {elapsed}<{eta}")
+                .expect("the template is valid")
+                .progress_chars("=> "),
+        );
+        bar.set_message(format!("net-iter iterations on {}", spec.name));
+        let (table, joints) = iteration_table(&method, &spec.name, &dataset.pairs, || bar.inc(1));
+        rows.extend(table);
+        joint_rows.extend(joints);
+        bar.finish_and_clear();
+    }
+    let files = write_iterations(reports, &rows, &joint_rows)
+        .with_context(|| format!("writing the iteration table into {}", reports.display()))?;
+    for row in &rows {
+        eprintln!(
+            "{} iteration {:2}: EPE {:.4} RI {:.4} IoU {:.4} ({} of {} pairs still running)",
+            row.dataset, row.iteration, row.epe, row.rand_index, row.iou, row.running, row.pairs
+        );
+    }
+    for row in &joint_rows {
+        let s = &row.scores;
+        eprintln!(
+            "{} {} joints: {} of {} typed right, median axis error {:.1}°, median pivot distance {:.3}",
+            row.dataset,
+            row.method,
+            s.type_correct,
+            s.joints,
+            joints::median(&s.axis_errors),
+            joints::median(&s.pivot_distances)
+        );
+    }
+    eprintln!(
+        "wrote {}",
+        files.iter().map(|f| f.display().to_string()).collect::<Vec<_>>().join(", ")
     );
     Ok(())
 }

@@ -1,5 +1,5 @@
-//! The default registry of `--all`: the `gt` oracle, the network (`net`) from the shipped
-//! weights and its segmentation module on the true flow (`net-seg@gt-flow`), `one-part` (one rigid part on nearest-neighbour flow), NRR and the flow baselines,
+//! The default registry of `--all`: the `gt` oracle, the network (`net`, one pass; `net-iter`,
+//! the iterative procedure) from the shipped weights and its segmentation module on the true flow (`net-seg@gt-flow`), `one-part` (one rigid part on nearest-neighbour flow), NRR and the flow baselines,
 //! and every segmentation baseline on the ground-truth flow (oracle rows) and on the
 //! network's flow (the paper's protocol).
 
@@ -13,8 +13,9 @@ use baselines::{
 use burn::prelude::Device;
 use model::checkpoint::load_weights;
 use model::config::TrainConfig;
+use model::inference::InferenceParams;
+use model::method::NetworkMethod;
 use model::network::PartNet;
-use model::predict::NetworkMethod;
 use pairs::{Method, Segmenter};
 use sha2::{Digest, Sha256};
 
@@ -69,15 +70,31 @@ fn segmenter<S: Segmenter + Debug + 'static>(segmenter: S) -> (Arc<dyn Segmenter
     (Arc::new(segmenter), fingerprint)
 }
 
+/// The iterative network row, `net-iter` (the paper's full inference procedure).
+pub fn iterative_network(net: PartNet) -> Arc<NetworkMethod> {
+    Arc::new(NetworkMethod::with_params("net-iter", net, InferenceParams::iterative()))
+}
+
+/// The `net-iter` row's fingerprint: the network's and the procedure's parameters.
+pub fn iterative_fingerprint(net_fingerprint: &str) -> String {
+    format!("{net_fingerprint} {:?}", InferenceParams::iterative())
+}
+
 /// The default rows, with the network loaded from `weights`.
 pub fn standard_registry(weights: &Path) -> Result<Registry, EvalError> {
     let (net, net_fingerprint) = load_network(weights)?;
     let net_segmenter: Arc<dyn Segmenter> = Arc::new(NetworkMethod::new("net-seg", net.clone()));
+    let net_model = net.clone();
     let net: Arc<dyn Method> = Arc::new(NetworkMethod::new("net", net));
     let (nearest, nearest_fingerprint) = whole(NearestFlow);
     let mut registry = Registry::new();
     registry.oracle();
     registry.method(net.clone(), Board::Both, &net_fingerprint);
+    registry.method(
+        iterative_network(net_model),
+        Board::Both,
+        &iterative_fingerprint(&net_fingerprint),
+    );
     let (one_part, one_part_fingerprint) = segmenter(OnePart);
     registry.combine(
         one_part,

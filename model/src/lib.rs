@@ -23,6 +23,8 @@
 //! ```
 #![deny(missing_docs)]
 
+pub mod animation;
+pub mod apps;
 pub mod backbone;
 pub mod batch;
 pub mod checkpoint;
@@ -31,14 +33,19 @@ pub mod correspondence;
 pub mod files;
 pub mod flow;
 pub mod hypotheses;
+pub mod inference;
+pub mod labels;
 pub mod log;
 pub mod losses;
+pub mod method;
 pub mod network;
 pub mod objective;
 pub mod plot;
+pub mod pointfile;
 pub mod pointnet;
 pub mod predict;
 pub mod rotation;
+pub mod rotation_search;
 pub mod rpen;
 pub mod sampling;
 pub mod support;

@@ -1,4 +1,5 @@
-//! `model`: train the network stage by stage, or score trained weights on the validation set.
+//! `model`: train the network stage by stage, score trained weights on the validation set,
+//! run the whole inference procedure on a user's two files, or animate a dataset pair.
 
 use std::path::PathBuf;
 
@@ -6,19 +7,27 @@ use anyhow::{Context, Result};
 use burn::prelude::*;
 use clap::{Parser, Subcommand, ValueEnum};
 use indicatif::{ProgressBar, ProgressStyle};
+use model::animation::{write_animation, AnimationParams};
+use model::apps::{
+    describe, input_from_files, load_network_folder, pair_from_dataset, write_segment_plys,
+};
 use model::checkpoint::{load_weights, CheckpointDir};
 use model::config::TrainConfig;
+use model::inference::InferenceParams;
 use model::train::{RunPaths, Trainer};
 use model::validation::{score, validation_pairs};
+use pairs::{PairInput, Prediction};
 
 #[derive(Parser, Debug)]
 #[command(
     version,
-    about = "Train and validate the part-induction network of Yi et al. 2018",
+    about = "Train, validate and run the part-induction network of Yi et al. 2018",
     after_help = "Examples:\n  \
         model train --config model/configs/cpu.toml      # train (or resume) the CPU config\n  \
         model train --config tiny --max-steps 20         # a built-in config by name\n  \
-        model validate --config cpu --weights model/weights/cpu/model.bpk"
+        model validate --config cpu --weights model/weights/cpu/model.bpk\n  \
+        model infer P.ply Q.obj --out out/               # parts, motions, coloured PLYs\n  \
+        model animate --pair sf2f:sf2f-00000-1 --out anim.glb"
 )]
 struct Cli {
     #[command(subcommand)]
@@ -55,6 +64,83 @@ enum Command {
         #[arg(long)]
         weights: PathBuf,
     },
+    /// Run the inference procedure on two point clouds or meshes (.ply or .obj): print the
+    /// parts, motions and joints, and write p_segments.ply and q_segments.ply.
+    Infer {
+        /// The source shape P.
+        p: PathBuf,
+        /// The target shape Q.
+        q: PathBuf,
+        /// Folder for the coloured PLYs.
+        #[arg(long, default_value = ".")]
+        out: PathBuf,
+        #[command(flatten)]
+        run: RunArgs,
+    },
+    /// Animate a dataset pair: each found part moves from P to Q along its SE(3) geodesic,
+    /// written as a binary glTF (one node per segment, keyframes).
+    Animate {
+        /// The pair, as <dataset>:<id> or <dataset>:<index>.
+        #[arg(long)]
+        pair: String,
+        /// Folder of the datasets.
+        #[arg(long, default_value = "datasets")]
+        datasets_root: PathBuf,
+        /// The .glb file to write.
+        #[arg(long, default_value = "anim.glb")]
+        out: PathBuf,
+        /// Keyframes from P to Q.
+        #[arg(long, default_value_t = 31)]
+        keyframes: usize,
+        #[command(flatten)]
+        run: RunArgs,
+    },
+}
+
+/// The network and procedure options shared by `infer` and `animate`.
+#[derive(clap::Args, Debug)]
+struct RunArgs {
+    /// Weights folder (config.toml and model.bpk).
+    #[arg(long, default_value = "model/weights/cpu")]
+    weights: PathBuf,
+    /// Most passes of the iterative procedure (1: a single pass).
+    #[arg(long, default_value_t = 10)]
+    iterations: usize,
+    /// Search 48 rotations of P for the initial orientation (for pairs whose orientations
+    /// differ a lot).
+    #[arg(long)]
+    rotation_search: bool,
+    /// Points per cloud (files with more are reduced by farthest-point sampling).
+    #[arg(long, default_value_t = 512)]
+    points: usize,
+}
+
+impl RunArgs {
+    fn params(&self) -> InferenceParams {
+        InferenceParams {
+            max_iterations: self.iterations.max(1),
+            rotation_search: self.rotation_search,
+            ..InferenceParams::iterative()
+        }
+    }
+
+    fn infer(&self, input: &PairInput) -> Result<Prediction> {
+        let net = load_network_folder(&self.weights)
+            .with_context(|| format!("loading the weights folder {}", self.weights.display()))?;
+        let spinner = ProgressBar::new_spinner().with_message("inferring");
+        spinner.enable_steady_tick(std::time::Duration::from_millis(120));
+        let inference = net.infer(input, &self.params()).context("running the network")?;
+        spinner.finish_and_clear();
+        for (i, it) in inference.iterations.iter().enumerate() {
+            tracing::info!(
+                "pass {}: {} segments, mean flow change {:.4}",
+                i + 1,
+                it.prediction.motions.len(),
+                it.change
+            );
+        }
+        Ok(inference.prediction())
+    }
 }
 
 /// Where tensors live.
@@ -155,6 +241,34 @@ fn main() -> Result<()> {
                 s.rand_index,
                 s.iou
             );
+        }
+        Command::Infer { p, q, out, run } => {
+            let input = input_from_files(&p, &q, run.points).context("reading the input files")?;
+            let prediction = run.infer(&input)?;
+            print!("{}", describe(&input, &prediction));
+            let files = write_segment_plys(&out, &input, &prediction)
+                .with_context(|| format!("writing the coloured clouds into {}", out.display()))?;
+            for f in files {
+                println!("wrote {}", f.display());
+            }
+        }
+        Command::Animate { pair, datasets_root, out, keyframes, run } => {
+            let pair = pair_from_dataset(&datasets_root, &pair)
+                .with_context(|| format!("reading {pair} from {}", datasets_root.display()))?;
+            let input = pair.input();
+            let prediction = run.infer(input)?;
+            print!("{}", describe(input, &prediction));
+            let params = AnimationParams { keyframes, ..AnimationParams::default() };
+            write_animation(
+                &out,
+                &input.p.points,
+                &prediction.segments_p,
+                &prediction.motions,
+                &input.q.points,
+                &params,
+            )
+            .with_context(|| format!("writing {}", out.display()))?;
+            println!("wrote {}", out.display());
         }
     }
     Ok(())

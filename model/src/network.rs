@@ -86,6 +86,18 @@ impl PartNet {
         Ok(FlowOutput { correspondence, flow })
     }
 
+    /// The correspondence module alone: matching logits and mask on the subsets.
+    ///
+    /// # Shapes
+    /// `p, q: [batch, m, 3]`
+    pub fn correspondences(
+        &self,
+        p: Tensor<3>,
+        q: Tensor<3>,
+    ) -> Result<Correspondence, SamplingError> {
+        self.correspondence.forward(p, q)
+    }
+
     /// Hypotheses and support on the first s points of P given a flow, and `steps` RPEN
     /// steps (none for stage 2).
     ///

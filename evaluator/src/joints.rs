@@ -1,0 +1,103 @@
+//! Joint estimation scored against the ground-truth joints (beyond the paper): each joint's
+//! part is matched to a predicted segment (the Hungarian matching of the IoU metric), that
+//! segment's joint is estimated from its motion relative to the largest segment
+//! (`pairs::joint_estimate`), and compared: joint type, axis angle (as lines, 0 to 90°) and,
+//! for revolute joints estimated as revolute, the distance from the estimated pivot to the
+//! true axis line (normalised units). A joint whose part has no segment, or whose segment
+//! does not move relative to the base, counts as a wrong type.
+
+use pairs::joint_estimate::{estimate_joints, JointParams};
+use pairs::math::{Point3, Vector3};
+use pairs::metrics::matched_iou;
+use pairs::transform::axis_error_deg;
+use pairs::{JointKind, Pair, Prediction};
+
+/// Joint scores summed over pairs.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct JointScores {
+    /// Ground-truth joints seen.
+    pub joints: usize,
+    /// Joints whose type was estimated correctly.
+    pub type_correct: usize,
+    /// Axis errors in degrees, one per joint with an estimate.
+    pub axis_errors: Vec<f64>,
+    /// Pivot distances, one per revolute joint estimated as revolute.
+    pub pivot_distances: Vec<f64>,
+}
+
+/// Distance from `x` to the line through `pivot` along `axis` (unit).
+fn line_distance(x: &Point3, pivot: &Point3, axis: &Vector3) -> f64 {
+    let d = x - pivot;
+    f64::from((d - axis * d.dot(axis)).norm())
+}
+
+impl JointScores {
+    /// Adds one pair's prediction.
+    pub fn add(&mut self, pair: &Pair, prediction: &Prediction) {
+        let truth = pair.truth();
+        let Ok(matching) = matched_iou(&prediction.segments_p, &truth.part_p) else { return };
+        let estimates = estimate_joints(
+            &pair.input().p.points,
+            &prediction.segments_p,
+            &prediction.motions,
+            &JointParams::default(),
+        );
+        for joint in &truth.joints {
+            self.joints += 1;
+            let estimate = matching
+                .segment
+                .get(usize::from(joint.part))
+                .copied()
+                .flatten()
+                .and_then(|s| estimates.get(s as usize).copied().flatten());
+            let Some(estimate) = estimate else { continue };
+            self.type_correct += usize::from(estimate.kind == joint.kind);
+            self.axis_errors.push(f64::from(axis_error_deg(&estimate.axis, &joint.axis_p)));
+            if joint.kind == JointKind::Revolute && estimate.kind == JointKind::Revolute {
+                let axis = joint.axis_p.normalize();
+                self.pivot_distances.push(line_distance(&estimate.pivot, &joint.pivot_p, &axis));
+            }
+        }
+    }
+
+    /// Fraction of joints with the right type.
+    pub fn type_accuracy(&self) -> f64 {
+        self.type_correct as f64 / self.joints.max(1) as f64
+    }
+}
+
+/// The median of `values` (NaN when empty).
+pub fn median(values: &[f64]) -> f64 {
+    let mut v = values.to_vec();
+    v.sort_by(f64::total_cmp);
+    match v.len() {
+        0 => f64::NAN,
+        n if n % 2 == 1 => v[n / 2],
+        n => (v[n / 2 - 1] + v[n / 2]) / 2.0,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use pairs::segments::complete_prediction;
+    use pairs::synthetic::hinge_pair;
+
+    #[test]
+    fn the_true_segments_score_perfectly() {
+        let pair = hinge_pair("t", 6, 0.8);
+        let (input, truth) = (pair.input(), pair.truth());
+        let prediction = complete_prediction(input, &truth.flow, &truth.part_p, true);
+        let mut scores = JointScores::default();
+        scores.add(&pair, &prediction);
+        assert_eq!(scores.joints, 1);
+        assert_eq!(scores.type_accuracy(), 1.0);
+        assert!(scores.axis_errors[0] < 0.1, "{:?}", scores.axis_errors);
+        assert!(scores.pivot_distances[0] < 1e-3, "{:?}", scores.pivot_distances);
+        let one = complete_prediction(input, &truth.flow, &vec![0u8; truth.part_p.len()], true);
+        let mut none = JointScores::default();
+        none.add(&pair, &one);
+        assert_eq!((none.joints, none.type_correct), (1, 0));
+        assert_eq!(median(&[3.0, 1.0, 2.0]), 2.0);
+    }
+}

@@ -1,0 +1,101 @@
+//! Properties of the inference procedure on a small untrained network: its first pass is
+//! the single pass (`net`), its records are complete and deterministic, the rotation search picks
+//! one of its candidates and maps the result back to P's frame, and bad input is an error.
+
+use burn::prelude::*;
+use generator::config::GeneratorConfig;
+use generator::stream::TrainingStream;
+use model::config::TrainConfig;
+use model::inference::InferenceParams;
+use model::method::NetworkMethod;
+use model::network::PartNet;
+use model::rotation_search::{search_candidates, SEARCH_ROTATIONS};
+use model::train::stream_config;
+use pairs::math::Point3;
+use pairs::{Method, Pair};
+
+fn net_and_pair() -> (PartNet, Pair) {
+    let config = TrainConfig::built_in("tiny");
+    let pair = TrainingStream::new(GeneratorConfig {
+        categories: vec!["laptop".into()],
+        ..stream_config(&config)
+    })
+    .expect("valid generator config")
+    .next()
+    .expect("a pair")
+    .expect("generated");
+    (PartNet::seeded(&config.network, &Device::flex(), 5), pair)
+}
+
+#[test]
+fn the_first_pass_is_the_single_pass_and_records_are_complete() {
+    let (net, pair) = net_and_pair();
+    let input = pair.input();
+    let params = InferenceParams { max_iterations: 3, ..InferenceParams::iterative() };
+    let inference = net.infer(input, &params).expect("runs");
+    assert!((1..=3).contains(&inference.iterations.len()));
+    let single = net.infer(input, &InferenceParams::single_pass()).expect("runs");
+    assert_eq!(inference.iterations[0], single.iterations[0]);
+    assert!(inference.iterations[0].change.is_infinite());
+    for it in &inference.iterations {
+        let p = &it.prediction;
+        let flow = p.flow.as_ref().expect("a flow");
+        assert_eq!(flow.len(), input.p.len());
+        assert!(flow.iter().all(|f| f.iter().all(|v| v.is_finite())));
+        assert_eq!(p.segments_q.len(), input.q.len());
+        let k = p.motions.len();
+        assert!(p.segments_p.iter().chain(&p.segments_q).all(|&l| (l as usize) < k));
+        let soft = p.segment_probs.as_ref().expect("soft segments");
+        assert!(soft.iter().all(|row| row.len() == k));
+    }
+    assert_eq!(inference, net.infer(input, &params).expect("runs again"), "deterministic");
+    let method = NetworkMethod::with_params("net-iter", net, params);
+    assert_eq!(method.name(), "net-iter");
+    assert_eq!(method.predict(input).expect("runs"), inference.prediction());
+}
+
+#[test]
+fn the_rotation_search_picks_a_candidate_and_answers_in_ps_frame() {
+    let (net, pair) = net_and_pair();
+    let input = pair.input();
+    let search = net.search_rotation(input).expect("runs");
+    assert_eq!(search.magnitudes.len(), SEARCH_ROTATIONS);
+    assert_eq!(search.rotation, search_candidates()[search.index]);
+    let params = InferenceParams {
+        max_iterations: 1,
+        rotation_search: true,
+        ..InferenceParams::iterative()
+    };
+    let inference = net.infer(input, &params).expect("runs");
+    assert_eq!(inference.rotation, search.rotation);
+    // The same pass run by hand on the turned P, mapped back: flow R x + f - x, motions M ∘ R.
+    let mut turned = input.clone();
+    turned.p.points =
+        input.p.points.iter().map(|x| Point3::from(search.rotation * x.coords)).collect();
+    let by_hand =
+        net.infer(&turned, &InferenceParams { rotation_search: false, ..params }).expect("runs");
+    let (found, expected) = (inference.prediction(), by_hand.prediction());
+    assert_eq!(found.segments_p, expected.segments_p);
+    let (flow, hand_flow) = (found.flow.expect("a flow"), expected.flow.expect("a flow"));
+    for ((x, t), (f, g)) in
+        input.p.points.iter().zip(&turned.p.points).zip(flow.iter().zip(&hand_flow))
+    {
+        assert!((f - (t + g - x)).norm() < 1e-4);
+    }
+    for (m, h) in found.motions.iter().zip(&expected.motions) {
+        for (x, t) in input.p.points.iter().zip(&turned.p.points).take(20) {
+            assert!((m.apply(x) - h.apply(t)).norm() < 1e-4);
+        }
+    }
+}
+
+#[test]
+fn bad_input_is_an_error_not_a_panic() {
+    let (net, pair) = net_and_pair();
+    let mut bad = pair.input().clone();
+    bad.p.points[3].y = f32::NAN;
+    assert!(net.infer(&bad, &InferenceParams::iterative()).is_err());
+    let mut empty = pair.input().clone();
+    empty.q.points.clear();
+    assert!(net.infer(&empty, &InferenceParams::iterative()).is_err());
+}
