@@ -73,6 +73,83 @@ impl Similarity {
     }
 }
 
+/// The sums of a weighted Umeyama fit of `src` onto `dst`, in f64: the optimal rotation, the
+/// weighted means, and the scale's numerator and denominator. Callers that share one scale
+/// between several fits (e.g. all parts of a pair) add the numerators and denominators.
+#[derive(Debug, Clone, PartialEq)]
+pub struct UmeyamaFit {
+    /// The optimal rotation (reflection corrected).
+    pub rotation: Matrix3d<f64>,
+    /// Weighted mean of `src`.
+    pub mean_src: Vector3d<f64>,
+    /// Weighted mean of `dst`.
+    pub mean_dst: Vector3d<f64>,
+    /// `Σ σ_i d_i` of the weighted cross-covariance (the optimal scale's numerator).
+    pub trace: f64,
+    /// `Σ w |src - mean_src|²` (the optimal scale's denominator).
+    pub variance: f64,
+}
+
+impl UmeyamaFit {
+    /// Fits the weighted sums; `None` when the inputs differ in length or are empty, the
+    /// weights (negative ones count as zero) sum to zero, or any input is non-finite.
+    pub fn new(src: &[Point3], dst: &[Point3], weights: &[Real]) -> Option<Self> {
+        if src.len() != dst.len() || src.len() != weights.len() || src.is_empty() {
+            return None;
+        }
+        let wsum: f64 = weights.iter().map(|&w| f64::from(w.max(0.0))).sum();
+        if !(wsum > 0.0 && wsum.is_finite()) {
+            return None;
+        }
+        let to64 = |p: &Point3| Vector3d::new(f64::from(p.x), f64::from(p.y), f64::from(p.z));
+        let (mut mean_src, mut mean_dst) = (Vector3d::zeros(), Vector3d::zeros());
+        for ((s, d), &w) in src.iter().zip(dst).zip(weights) {
+            let w = f64::from(w.max(0.0));
+            mean_src += to64(s) * w;
+            mean_dst += to64(d) * w;
+        }
+        mean_src /= wsum;
+        mean_dst /= wsum;
+        let (mut cov, mut variance) = (Matrix3d::zeros(), 0.0);
+        for ((s, d), &w) in src.iter().zip(dst).zip(weights) {
+            let w = f64::from(w.max(0.0));
+            let (cs, cd) = (to64(s) - mean_src, to64(d) - mean_dst);
+            cov += cd * cs.transpose() * w;
+            variance += cs.norm_squared() * w;
+        }
+        if !cov.iter().all(|v| v.is_finite()) {
+            return None;
+        }
+        let svd = cov.svd(true, true);
+        let (u, v_t) = (svd.u?, svd.v_t?);
+        // Reflection correction: flip the weakest singular direction when det(U V^T) < 0.
+        let mut d = Matrix3d::identity();
+        if (u * v_t).determinant() < 0.0 {
+            d[(2, 2)] = -1.0;
+        }
+        let trace = svd.singular_values.component_mul(&d.diagonal()).sum();
+        Some(Self { rotation: u * d * v_t, mean_src, mean_dst, trace, variance })
+    }
+
+    /// The similarity with this fit's rotation and the given `scale`.
+    pub fn with_scale(&self, scale: f64) -> Similarity {
+        Similarity {
+            rotation: self.rotation.cast::<Real>(),
+            translation: (self.mean_dst - self.rotation * self.mean_src * scale).cast::<Real>(),
+            scale: scale as Real,
+        }
+    }
+
+    /// The optimal scale of this fit alone (1 when degenerate).
+    pub fn scale(&self) -> f64 {
+        if self.variance > 0.0 {
+            self.trace / self.variance
+        } else {
+            1.0
+        }
+    }
+}
+
 /// Fits the similarity (or, with `with_scale = false`, the rigid motion) that best maps `src`
 /// onto `dst` in the weighted least-squares sense (Umeyama 1991; Kabsch without scale).
 ///
@@ -85,53 +162,8 @@ pub fn fit_similarity_weighted(
     weights: &[Real],
     with_scale: bool,
 ) -> Option<Similarity> {
-    if src.len() != dst.len() || src.len() != weights.len() || src.is_empty() {
-        return None;
-    }
-    let wsum: f64 = weights.iter().map(|&w| f64::from(w.max(0.0))).sum();
-    if !(wsum > 0.0 && wsum.is_finite()) {
-        return None;
-    }
-    let to64 = |p: &Point3| Vector3d::new(f64::from(p.x), f64::from(p.y), f64::from(p.z));
-    let (mut mu_s, mut mu_d) = (Vector3d::zeros(), Vector3d::zeros());
-    for ((s, d), &w) in src.iter().zip(dst).zip(weights) {
-        let w = f64::from(w.max(0.0));
-        mu_s += to64(s) * w;
-        mu_d += to64(d) * w;
-    }
-    mu_s /= wsum;
-    mu_d /= wsum;
-    let (mut cov, mut var_s) = (Matrix3d::zeros(), 0.0);
-    for ((s, d), &w) in src.iter().zip(dst).zip(weights) {
-        let w = f64::from(w.max(0.0));
-        let (cs, cd) = (to64(s) - mu_s, to64(d) - mu_d);
-        cov += cd * cs.transpose() * w;
-        var_s += cs.norm_squared() * w;
-    }
-    cov /= wsum;
-    var_s /= wsum;
-    if !cov.iter().all(|v| v.is_finite()) {
-        return None;
-    }
-    let svd = cov.svd(true, true);
-    let (u, v_t) = (svd.u?, svd.v_t?);
-    // Reflection correction: flip the weakest singular direction when det(U V^T) < 0.
-    let mut d = Matrix3d::identity();
-    if (u * v_t).determinant() < 0.0 {
-        d[(2, 2)] = -1.0;
-    }
-    let rotation = u * d * v_t;
-    let scale = if with_scale && var_s > 0.0 {
-        (svd.singular_values.component_mul(&d.diagonal())).sum() / var_s
-    } else {
-        1.0
-    };
-    let translation = mu_d - rotation * mu_s * scale;
-    Some(Similarity {
-        rotation: rotation.cast::<Real>(),
-        translation: translation.cast::<Real>(),
-        scale: scale as Real,
-    })
+    let fit = UmeyamaFit::new(src, dst, weights)?;
+    Some(fit.with_scale(if with_scale { fit.scale() } else { 1.0 }))
 }
 
 /// Angle in degrees of the rotation that takes `a` to `b` (the geodesic distance on SO(3)).
