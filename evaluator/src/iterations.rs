@@ -13,6 +13,7 @@ use model::method::NetworkMethod;
 use pairs::metrics::{epe, matched_iou, rand_index};
 use pairs::Pair;
 use plotters::prelude::*;
+use rayon::prelude::*;
 
 use crate::error::EvalError;
 use crate::files::replace_file;
@@ -53,12 +54,13 @@ pub struct JointRow {
     pub scores: JointScores,
 }
 
+/// One pair's scores per iteration and the joint scores of its first and last passes.
 fn score_pair(
     method: &NetworkMethod,
     pair: &Pair,
-    joints: &mut [JointScores; 2],
-) -> Result<PairScores, String> {
+) -> Result<(PairScores, [JointScores; 2]), String> {
     let inference = method.infer(pair.input()).map_err(|e| e.to_string())?;
+    let mut joints = [JointScores::default(), JointScores::default()];
     if let (Some(first), Some(last)) = (inference.iterations.first(), inference.iterations.last()) {
         joints[0].add(pair, &first.prediction);
         joints[1].add(pair, &last.prediction);
@@ -75,26 +77,40 @@ fn score_pair(
             let m = matched_iou(&p.segments_p, &truth.part_p).map_err(|e| e.to_string())?;
             Ok((e, ri, m.iou.iter().sum(), m.iou.len()))
         })
-        .collect()
+        .collect::<Result<PairScores, String>>()
+        .map(|scores| (scores, joints))
 }
 
 /// Scores every iteration of `method` on `pairs`, and the joints of its first and last
-/// passes; `tick` is called after each pair.
+/// passes; `tick` is called after each pair. Pairs run in parallel; the results are
+/// gathered in pair order, so the table does not depend on the thread count.
 pub fn iteration_table(
     method: &NetworkMethod,
     dataset: &str,
     pairs: &[Pair],
-    mut tick: impl FnMut(),
+    tick: impl Fn() + Sync,
 ) -> (Vec<IterationRow>, Vec<JointRow>) {
+    let results: Vec<_> = pairs
+        .par_iter()
+        .map(|pair| {
+            let result = score_pair(method, pair);
+            tick();
+            result
+        })
+        .collect();
     let mut scored: Vec<PairScores> = Vec::with_capacity(pairs.len());
     let mut joints = [JointScores::default(), JointScores::default()];
-    for pair in pairs {
-        match score_pair(method, pair, &mut joints) {
-            Ok(s) if !s.is_empty() => scored.push(s),
+    for (pair, result) in pairs.iter().zip(results) {
+        match result {
+            Ok((s, pair_joints)) if !s.is_empty() => {
+                scored.push(s);
+                for (total, one) in joints.iter_mut().zip(pair_joints) {
+                    total.merge(one);
+                }
+            }
             Ok(_) => {}
             Err(e) => tracing::warn!("{dataset} pair {}: {e}", pair.id()),
         }
-        tick();
     }
     let most = scored.iter().map(Vec::len).max().unwrap_or(0);
     let [first, last] = joints;
@@ -244,6 +260,34 @@ fn draw<DB: DrawingBackend>(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use burn::prelude::Device;
+    use model::config::TrainConfig;
+    use model::inference::InferenceParams;
+    use model::network::PartNet;
+    use pairs::synthetic::hinge_pair;
+
+    #[test]
+    fn the_table_does_not_depend_on_the_thread_count() {
+        let config = TrainConfig::built_in("tiny");
+        let pairs: Vec<Pair> =
+            (0..3).map(|k| hinge_pair(&format!("h{k}"), 12, 0.3 + 0.3 * k as f32)).collect();
+        let table = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("pool");
+            pool.install(|| {
+                let net = PartNet::seeded(&config.network, &Device::flex(), 5);
+                let params = InferenceParams { max_iterations: 3, ..InferenceParams::iterative() };
+                let method = NetworkMethod::with_params("net-iter", net, params);
+                iteration_table(&method, "hinges", &pairs, || {})
+            })
+        };
+        let (rows, joints) = table(1);
+        assert!((1..=3).contains(&rows.len()));
+        assert!(rows.iter().all(|r| r.pairs == 3 && r.epe.is_finite()));
+        assert_eq!(rows[0].running, 3);
+        assert_eq!(joints.len(), 2);
+        assert_eq!(joints[0].scores.joints, 3, "one hinge per pair");
+        assert_eq!(table(2), (rows, joints));
+    }
 
     #[test]
     fn writes_the_table_the_joints_and_both_plots() {

@@ -32,6 +32,14 @@ fn line_distance(x: &Point3, pivot: &Point3, axis: &Vector3) -> f64 {
 }
 
 impl JointScores {
+    /// Adds another set of scores (e.g. one pair's) to these.
+    pub fn merge(&mut self, other: JointScores) {
+        self.joints += other.joints;
+        self.type_correct += other.type_correct;
+        self.axis_errors.extend(other.axis_errors);
+        self.pivot_distances.extend(other.pivot_distances);
+    }
+
     /// Adds one pair's prediction.
     pub fn add(&mut self, pair: &Pair, prediction: &Prediction) {
         let truth = pair.truth();

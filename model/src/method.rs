@@ -1,7 +1,7 @@
 //! The network as the evaluator's [`Method`] (single pass `net`, iterative `net-iter`) and
 //! [`Segmenter`] (its segmentation module on a given flow).
 
-use std::sync::{Mutex, PoisonError};
+use std::sync::{Mutex, MutexGuard, PoisonError};
 
 use pairs::math::Vector3;
 use pairs::{Method, MethodError, PairInput, Prediction, Segmenter};
@@ -12,12 +12,14 @@ use crate::network::PartNet;
 /// The network for the evaluator: as a [`Method`], the inference procedure with its
 /// parameters (one pass for `net`, the iterative refinement for `net-iter`); as a
 /// [`Segmenter`], its segmentation module alone on a given flow (`net-seg@gt-flow`: the
-/// module on the true flow, the oracle row beside the classical segmenters').
+/// module on the true flow, the oracle row beside the classical segmenters'). It holds one
+/// copy of the network per rayon worker thread (a burn module is not `Sync`), so pairs run
+/// in parallel; the copies are identical, so results do not depend on which thread ran a pair.
 #[derive(Debug)]
 pub struct NetworkMethod {
     name: String,
     params: InferenceParams,
-    net: Mutex<PartNet>,
+    nets: Vec<Mutex<PartNet>>,
 }
 
 impl NetworkMethod {
@@ -28,7 +30,16 @@ impl NetworkMethod {
 
     /// Wraps a network with the given inference parameters.
     pub fn with_params(name: impl Into<String>, net: PartNet, params: InferenceParams) -> Self {
-        Self { name: name.into(), params, net: Mutex::new(net) }
+        let copies = rayon::current_num_threads().max(1);
+        let nets = (0..copies).map(|_| Mutex::new(net.clone())).collect();
+        Self { name: name.into(), params, nets }
+    }
+
+    /// The copy of the network for the calling thread (rayon worker `i` gets copy `i`, any
+    /// other thread copy 0).
+    fn net(&self) -> MutexGuard<'_, PartNet> {
+        let i = rayon::current_thread_index().unwrap_or(0) % self.nets.len();
+        self.nets[i].lock().unwrap_or_else(PoisonError::into_inner)
     }
 
     /// The inference parameters.
@@ -39,8 +50,9 @@ impl NetworkMethod {
     /// The whole record of the procedure on a pair: every pass's prediction, so that a
     /// caller can score each iteration (the paper's Table 3).
     pub fn infer(&self, input: &PairInput) -> Result<Inference, MethodError> {
-        let net = self.net.lock().unwrap_or_else(PoisonError::into_inner);
-        net.infer(input, &self.params).map_err(|e| MethodError::new(&self.name, &input.id, e))
+        self.net()
+            .infer(input, &self.params)
+            .map_err(|e| MethodError::new(&self.name, &input.id, e))
     }
 }
 
@@ -64,8 +76,8 @@ impl Segmenter for NetworkMethod {
             let msg = format!("flow has {} vectors for {} points", flow.len(), input.p.len());
             return Err(MethodError::new(&self.name, &input.id, msg));
         }
-        let net = self.net.lock().unwrap_or_else(PoisonError::into_inner);
-        net.segment_flow_with(input, flow, &self.params.labels)
+        self.net()
+            .segment_flow_with(input, flow, &self.params.labels)
             .map_err(|e| MethodError::new(&self.name, &input.id, e))
     }
 }
