@@ -22,6 +22,7 @@ pub mod check;
 pub mod config;
 pub mod gallery;
 pub mod generate;
+pub mod import;
 pub mod kinematics;
 pub mod label;
 pub mod mesh;
