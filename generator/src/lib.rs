@@ -17,6 +17,7 @@
 //! ```
 #![deny(missing_docs)]
 
+pub mod asset_dataset;
 pub mod categories;
 pub mod check;
 pub mod config;
