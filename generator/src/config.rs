@@ -5,6 +5,7 @@ use serde::{Deserialize, Serialize};
 use pairs::PairKind;
 
 use crate::categories::{self, Category, Split};
+pub use crate::import::ImportOptions;
 pub use crate::scan_config::ScanConfig;
 
 /// Everything that determines a generated dataset; together with the generator version it
@@ -44,6 +45,9 @@ pub struct GeneratorConfig {
     /// viewpoints of the same two shapes (the paper's mix: 5), alternating SF2P and SP2P.
     #[serde(skip_serializing_if = "is_zero")]
     pub scanned_per_pair: u32,
+    /// How user assets are read (`generator --assets`; built-in defaults when absent).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub import: Option<ImportOptions>,
 }
 
 fn is_zero(n: &u32) -> bool {
@@ -67,6 +71,7 @@ impl Default for GeneratorConfig {
             min_part_points: 10,
             scan: None,
             scanned_per_pair: 0,
+            import: None,
         }
     }
 }
@@ -104,6 +109,11 @@ impl GeneratorConfig {
     /// defaults written out for the scanned kinds.
     pub fn of_kind(kind: PairKind) -> Self {
         Self { kind, ..Self::default() }.resolved()
+    }
+
+    /// The import settings in force: the config's, or the built-in defaults.
+    pub fn importer(&self) -> ImportOptions {
+        self.import.clone().unwrap_or_default()
     }
 
     /// The scanner settings in force: the config's, or the built-in defaults.
@@ -151,6 +161,11 @@ impl GeneratorConfig {
             return invalid("pose_translation", "must be finite and non-negative");
         }
         self.scanner().validate()?;
+        if let Some(import) = &self.import {
+            if let Err(reason) = import.continuous_range() {
+                return Err(ConfigError::Invalid { field: "import.continuous_range_deg", reason });
+            }
+        }
         self.categories().map(|_| ())
     }
 

@@ -129,14 +129,25 @@ pub fn object_pairs_with(
     variant: Variant,
 ) -> Result<Vec<GeneratedPair>, GenerateError> {
     let object = build_object(config, index)?;
-    let sampler = SurfaceSampler::new(&object);
+    pairs_of_object(config, &object, index, variant)
+}
+
+/// The pairs of an already built `object` as object `index` of a dataset (user assets
+/// come here with their object built by `crate::import`).
+pub fn pairs_of_object(
+    config: &GeneratorConfig,
+    object: &ArticulatedObject,
+    index: u32,
+    variant: Variant,
+) -> Result<Vec<GeneratedPair>, GenerateError> {
+    let sampler = SurfaceSampler::new(object);
     let mut rng = rng_for(config.seed, u64::from(index), Stream::States);
     let states: Vec<Vec<Real>> = (0..config.states_per_object)
-        .map(|_| draw_state(&object, config.rest_probability, &mut rng))
+        .map(|_| draw_state(object, config.rest_probability, &mut rng))
         .collect();
     let wanted = config.pairs_per_object as usize;
     let mut pairs = Vec::with_capacity(wanted);
-    let scene = Scene { config, object: &object, sampler: &sampler, index, variant };
+    let scene = Scene { config, object, sampler: &sampler, index, variant };
     for (candidate, (i, j)) in candidate_pairs(&states, &mut rng).into_iter().enumerate() {
         if pairs.len() == wanted {
             break;
@@ -152,7 +163,7 @@ pub fn object_pairs_with(
     if pairs.len() < wanted {
         return Err(GenerateError::TooFewPairs {
             object: index,
-            category: object.category,
+            category: object.category.clone(),
             found: pairs.len(),
             wanted,
             min: config.min_part_points,
@@ -398,5 +409,6 @@ pub fn dataset_origin(config: &GeneratorConfig, shard: Option<Shard>) -> Dataset
         config: serde_json::to_value(config.resolved()).expect("a config always serialises"),
         splits: split_table(),
         shard,
+        assets: Vec::new(),
     }
 }

@@ -17,11 +17,13 @@
 //! ```
 #![deny(missing_docs)]
 
+pub mod asset_dataset;
 pub mod categories;
 pub mod check;
 pub mod config;
 pub mod gallery;
 pub mod generate;
+pub mod import;
 pub mod kinematics;
 pub mod label;
 pub mod mesh;

@@ -4,6 +4,7 @@ use std::path::PathBuf;
 
 use anyhow::{bail, Context, Result};
 use clap::{Parser, Subcommand};
+use generator::asset_dataset::{generate_asset_dataset, load_assets, relative};
 use generator::categories::{Split, CATEGORIES};
 use generator::config::GeneratorConfig;
 use generator::gallery::write_gallery;
@@ -63,8 +64,25 @@ struct Args {
     /// of a cluster array job; `generator merge` joins the shards.
     #[arg(long, value_name = "I/N", value_parser = parse_shard_arg)]
     shard: Option<Shard>,
+    /// Make the dataset from user assets instead of the built-in categories: an asset file,
+    /// or a folder searched recursively for .urdf, .gltf, .glb, and .obj files with a
+    /// <name>.joints.json sidecar (docs/FORMAT.md, "User assets"). Each asset is one object.
+    #[arg(long, value_name = "PATH")]
+    assets: Option<PathBuf>,
+    /// Extra folder searched for URDF `package://` meshes (repeatable).
+    #[arg(long, value_name = "DIR")]
+    package_path: Vec<PathBuf>,
+    /// Range given to continuous (unlimited) joints of assets, degrees: LO,HI.
+    #[arg(
+        long,
+        value_name = "LO,HI",
+        value_delimiter = ',',
+        num_args = 2,
+        allow_negative_numbers = true
+    )]
+    continuous_range: Option<Vec<f64>>,
     /// Output folder [default: datasets/<kind>, or datasets/<kind>-<split> for train and
-    /// validation; reports/gallery with --gallery].
+    /// validation; datasets/assets-<kind> with --assets; reports/gallery with --gallery].
     #[arg(short, long, value_name = "DIR")]
     out: Option<PathBuf>,
     /// Worker threads [default: all cores]; the output does not depend on it.
@@ -91,6 +109,7 @@ const EXAMPLES: &str = "Examples:
   generator --split train -n 20000 --out datasets/train   a training set on disk
   generator --shard 3/8 --out shards/3                    shard 3 of 8 (cluster array job)
   generator merge shards/* --out datasets/sf2f            the shards as one dataset
+  generator --assets my-models/ --kind sf2p --out /tmp/mine  pairs of your URDF/OBJ/glTF assets
   generator --gallery                                     reports/gallery/*.png";
 
 /// Subcommands besides generating.
@@ -150,6 +169,14 @@ impl Args {
             split,
             categories
         );
+        if !self.package_path.is_empty() || self.continuous_range.is_some() {
+            let mut import = config.importer();
+            import.package_paths.extend(self.package_path.iter().cloned());
+            if let Some(range) = &self.continuous_range {
+                import.continuous_range_deg = [range[0], range[1]];
+            }
+            config.import = Some(import);
+        }
         Ok(config)
     }
 }
@@ -202,6 +229,9 @@ fn run(args: Args) -> Result<()> {
         return Ok(());
     }
     config.validate().context("checking the config")?;
+    if let Some(root) = &args.assets {
+        return assets(&args, &config, root);
+    }
     let out = args.out.clone().unwrap_or_else(|| default_out(&config));
     if !args.force && out.join(pairs::dataset::MANIFEST_FILE).exists() {
         bail!("{} already holds a dataset; pass --force to replace it", out.display());
@@ -217,6 +247,51 @@ fn run(args: Args) -> Result<()> {
         .with_context(|| format!("generating the dataset in {}", out.display()))?;
     bar.finish_and_clear();
     report(&manifest, &out, started);
+    Ok(())
+}
+
+/// `generator --assets`: one object per asset found; failures listed at the end.
+fn assets(args: &Args, config: &GeneratorConfig, root: &std::path::Path) -> Result<()> {
+    if args.shard.is_some() {
+        bail!("--shard does not apply to --assets");
+    }
+    let out = args.out.clone().unwrap_or_else(|| {
+        PathBuf::from("datasets").join(format!("assets-{}", config.kind.as_str().to_lowercase()))
+    });
+    if !args.force && out.join(pairs::dataset::MANIFEST_FILE).exists() {
+        bail!("{} already holds a dataset; pass --force to replace it", out.display());
+    }
+    let started = std::time::Instant::now();
+    let sources = load_assets(root, config)
+        .with_context(|| format!("looking for assets in {}", root.display()))?;
+    if sources.is_empty() {
+        bail!(
+            "no assets in {} (.urdf, .gltf, .glb, or .obj with a .joints.json sidecar)",
+            root.display()
+        );
+    }
+    let loaded = sources.iter().filter(|s| s.loaded.is_ok()).count();
+    if loaded == 0 {
+        for s in &sources {
+            if let Err(e) = &s.loaded {
+                eprintln!("  {}: {e}", relative(root, &s.path));
+            }
+        }
+        bail!("none of the {} assets in {} could be read", sources.len(), root.display());
+    }
+    let bar = progress_bar(sources.len() as u64 * u64::from(config.pairs_per_object), "pairs");
+    bar.set_message(format!("generating {}", out.display()));
+    let made =
+        generate_asset_dataset(config, root, &sources, &out, args.force, |n| bar.set_position(n))
+            .with_context(|| format!("generating the dataset in {}", out.display()))?;
+    bar.finish_and_clear();
+    report(&made.manifest, &out, started);
+    if !made.failures.is_empty() {
+        println!("{} of {} assets gave no pairs:", made.failures.len(), sources.len());
+        for (path, error) in &made.failures {
+            println!("  {path}: {error}");
+        }
+    }
     Ok(())
 }
 

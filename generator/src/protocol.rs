@@ -9,9 +9,10 @@ use crate::objects::ArticulatedObject;
 use crate::seed::Rng;
 
 /// Draws one articulation state: each joint sits at its rest value with probability
-/// `rest_probability` (a closed door), else uniformly within its limits.
+/// `rest_probability` (a closed door), else uniformly within its limits; mimic joints then
+/// follow their leaders (their own draws are discarded, so the stream stays aligned).
 pub fn draw_state(object: &ArticulatedObject, rest_probability: f64, rng: &mut Rng) -> Vec<Real> {
-    object
+    let mut values: Vec<Real> = object
         .joints
         .iter()
         .map(|j| {
@@ -21,7 +22,9 @@ pub fn draw_state(object: &ArticulatedObject, rest_probability: f64, rng: &mut R
                 rng.random_range(j.limits.0..=j.limits.1)
             }
         })
-        .collect()
+        .collect();
+    object.follow_mimics(&mut values);
+    values
 }
 
 /// Every unordered pair of states that differ in at least one joint, shuffled, each

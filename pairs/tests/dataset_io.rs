@@ -16,6 +16,7 @@ fn origin() -> DatasetOrigin {
         config: serde_json::json!({"points": 32}),
         splits: Default::default(),
         shard: None,
+        assets: Vec::new(),
     }
 }
 

@@ -42,6 +42,7 @@ fn the_documented_python_snippet_reads_a_pair() {
             config: serde_json::json!({}),
             splits: Default::default(),
             shard: None,
+            assets: Vec::new(),
         })
         .expect("finish");
 

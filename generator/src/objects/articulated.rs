@@ -36,6 +36,20 @@ pub struct Joint {
     pub rest: Real,
 }
 
+/// A joint whose value follows another's, as a URDF `mimic` joint does:
+/// `value[joint] = multiplier * value[leader] + offset`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Mimic {
+    /// Index of the joint that follows.
+    pub joint: usize,
+    /// Index of the joint it follows; never itself a follower.
+    pub leader: usize,
+    /// Factor applied to the leader's value.
+    pub multiplier: Real,
+    /// Added after the factor (radians or object units).
+    pub offset: Real,
+}
+
 /// An object whose link 0 is the root; every other link has exactly one parent joint.
 #[derive(Debug, Clone, PartialEq)]
 pub struct ArticulatedObject {
@@ -45,6 +59,9 @@ pub struct ArticulatedObject {
     pub links: Vec<Link>,
     /// Joints, one per non-root link.
     pub joints: Vec<Joint>,
+    /// Joints whose values follow other joints (imported assets); empty for the built-in
+    /// categories, whose joints all move independently.
+    pub mimics: Vec<Mimic>,
 }
 
 /// An object that breaks the model's rules.
@@ -117,7 +134,12 @@ impl Joint {
 impl ArticulatedObject {
     /// An object with only its root link.
     pub fn new(category: &str, root: Link) -> Self {
-        Self { category: category.into(), links: vec![root], joints: Vec::new() }
+        Self {
+            category: category.into(),
+            links: vec![root],
+            joints: Vec::new(),
+            mimics: Vec::new(),
+        }
     }
 
     /// Adds `link` as the child of `parent` through a joint; returns the new link's index.
@@ -141,8 +163,19 @@ impl ArticulatedObject {
         parents
     }
 
+    /// Sets every mimic joint of a state from its leader, so that the values agree with
+    /// the object's couplings; a no-op for objects without mimic joints.
+    pub fn follow_mimics(&self, values: &mut [Real]) {
+        for m in &self.mimics {
+            if let (Some(&leader), true) = (values.get(m.leader), m.joint < values.len()) {
+                values[m.joint] = m.multiplier * leader + m.offset;
+            }
+        }
+    }
+
     /// Checks the rules of the model: non-empty finite meshes, a tree with parents before
-    /// children, unit axes, ordered limits that hold the rest value.
+    /// children, unit axes, ordered limits that hold the rest value, mimic joints that
+    /// follow a joint that is not itself a follower.
     pub fn validate(&self) -> Result<(), ObjectError> {
         let category = || self.category.clone();
         for link in &self.links {
@@ -180,6 +213,7 @@ impl ArticulatedObject {
                 return Err(joint_error("limits out of order or a rest value outside them"));
             }
         }
+        self.validate_mimics()?;
         if let Some(orphan) = seen.iter().skip(1).position(|s| !s) {
             let reason = format!("link {} has no parent joint", orphan + 1);
             return Err(ObjectError::NotATree {
@@ -187,6 +221,28 @@ impl ArticulatedObject {
                 joint: self.joints.len(),
                 reason,
             });
+        }
+        Ok(())
+    }
+
+    /// The mimic rules of [`Self::validate`].
+    fn validate_mimics(&self) -> Result<(), ObjectError> {
+        let n = self.joints.len();
+        for m in &self.mimics {
+            let bad = |reason: &str| ObjectError::BadJoint {
+                category: self.category.clone(),
+                joint: m.joint,
+                reason: reason.into(),
+            };
+            if m.joint >= n || m.leader >= n || m.joint == m.leader {
+                return Err(bad("a mimic of itself or of a joint out of range"));
+            }
+            if self.mimics.iter().any(|o| o.joint == m.leader) {
+                return Err(bad("a mimic of a joint that is itself a mimic"));
+            }
+            if !(m.multiplier.is_finite() && m.offset.is_finite()) {
+                return Err(bad("a non-finite mimic multiplier or offset"));
+            }
         }
         Ok(())
     }

@@ -23,4 +23,4 @@ pub mod round;
 pub mod shell;
 pub mod tube;
 
-pub use articulated::{ArticulatedObject, Joint, Link, ObjectError};
+pub use articulated::{ArticulatedObject, Joint, Link, Mimic, ObjectError};

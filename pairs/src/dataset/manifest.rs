@@ -56,6 +56,31 @@ pub struct DatasetOrigin {
     /// Which part of a larger dataset this folder holds; absent for a whole dataset.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub shard: Option<Shard>,
+    /// The user assets the dataset was made from (`generator --assets`), in object order;
+    /// absent for the procedural categories.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub assets: Vec<AssetRecord>,
+}
+
+/// One user asset of a dataset: its files with their checksums, and its object id or the
+/// error that kept it out.
+#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+pub struct AssetRecord {
+    /// Path of the asset's main file, relative to the folder given to `--assets` (the file
+    /// name when a single file was given), `/`-separated.
+    pub path: String,
+    /// Object id of its pairs (`provenance.object_id`).
+    pub object_id: u32,
+    /// Size and sha256 of the main file.
+    #[serde(flatten)]
+    pub file: FileEntry,
+    /// The other files it was read from (sidecar, meshes, buffers), by path relative to the
+    /// same folder where they lie inside it.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub files: BTreeMap<String, FileEntry>,
+    /// Why the asset gave no pairs; absent when it gave its pairs.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub error: Option<String>,
 }
 
 /// One of `count` shards of a dataset: the objects of contiguous range `index` of `count`.

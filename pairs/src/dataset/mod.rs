@@ -8,7 +8,7 @@ pub mod viz;
 pub mod writer;
 
 pub use index::IndexRow;
-pub use manifest::{Counts, DatasetOrigin, FileEntry, Manifest, Shard, MANIFEST_FILE};
+pub use manifest::{AssetRecord, Counts, DatasetOrigin, FileEntry, Manifest, Shard, MANIFEST_FILE};
 pub use reader::{Dataset, PairReader};
 pub use schema::{decode_record, encode_pair, PairRecord};
 pub use writer::{DatasetWriter, INDEX_FILE, PAIRS_FILE};

@@ -1,0 +1,33 @@
+//! One asset file to one articulated object, whichever its format.
+
+use std::path::{Path, PathBuf};
+
+use super::discover::extension;
+use super::gltf::read_gltf_asset;
+use super::obj_groups::read_obj_asset;
+use super::skeleton::assemble;
+use super::urdf::read_urdf_asset;
+use super::{ImportError, ImportOptions};
+use crate::objects::ArticulatedObject;
+
+/// An imported asset.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Imported {
+    /// The object, valid by the model's rules.
+    pub object: ArticulatedObject,
+    /// Files read besides the asset's own (sidecar, meshes, buffers), in reading order.
+    pub files: Vec<PathBuf>,
+}
+
+/// Reads the asset at `path` by its extension: `.urdf`, `.obj` (with its sidecar),
+/// `.gltf` or `.glb`.
+pub fn load_asset(path: &Path, options: &ImportOptions) -> Result<Imported, ImportError> {
+    let continuous = options.continuous_range().map_err(ImportError::Options)?;
+    let (skeleton, files) = match extension(path).as_str() {
+        "urdf" => read_urdf_asset(path, options)?,
+        "obj" => read_obj_asset(path)?,
+        "gltf" | "glb" => read_gltf_asset(path)?,
+        _ => return Err(ImportError::UnknownFormat { path: path.into() }),
+    };
+    Ok(Imported { object: assemble(skeleton, continuous)?, files })
+}

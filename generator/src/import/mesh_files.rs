@@ -1,0 +1,119 @@
+//! Mesh files: OBJ (every group, or the groups kept apart) and STL (ASCII or binary).
+
+use std::io::Cursor;
+use std::path::Path;
+
+use pairs::math::Point3;
+
+use super::mesh_build::build_mesh;
+use super::{text, ImportError};
+use crate::mesh::Mesh;
+
+/// Triangles of one OBJ group (or object): its name, positions and triangles.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ObjGroup {
+    /// The `g` or `o` name (`unnamed_object` when the file has none).
+    pub name: String,
+    /// Vertex positions.
+    pub positions: Vec<Point3>,
+    /// Triangles, indices into `positions`.
+    pub triangles: Vec<[u32; 3]>,
+}
+
+/// The groups of an OBJ text that have faces, in order of first appearance; a group that
+/// appears twice (split by `usemtl` or repeated `g` lines) is one group. Polygons are fanned
+/// into triangles; points and lines are ignored; `mtllib` is not read.
+pub fn parse_obj(path: &Path, text: &str) -> Result<Vec<ObjGroup>, ImportError> {
+    let options = tobj::LoadOptions {
+        single_index: true,
+        triangulate: true,
+        ignore_points: true,
+        ignore_lines: true,
+        ..Default::default()
+    };
+    let (models, _materials) = tobj::load_obj_buf(&mut Cursor::new(text), &options, |_| {
+        Ok((Vec::new(), Default::default()))
+    })
+    .map_err(|e| ImportError::Parse {
+        path: path.into(),
+        format: "OBJ",
+        reason: e.to_string(),
+    })?;
+    let mut groups: Vec<ObjGroup> = Vec::new();
+    for model in models {
+        let mesh = model.mesh;
+        if mesh.indices.is_empty() {
+            continue;
+        }
+        let index = match groups.iter().position(|g| g.name == model.name) {
+            Some(i) => i,
+            None => {
+                groups.push(ObjGroup {
+                    name: model.name,
+                    positions: Vec::new(),
+                    triangles: Vec::new(),
+                });
+                groups.len() - 1
+            }
+        };
+        let group = &mut groups[index];
+        let offset = group.positions.len() as u32;
+        group
+            .positions
+            .extend(mesh.positions.chunks_exact(3).map(|c| Point3::new(c[0], c[1], c[2])));
+        group.triangles.extend(
+            mesh.indices.chunks_exact(3).map(|t| [t[0] + offset, t[1] + offset, t[2] + offset]),
+        );
+    }
+    Ok(groups)
+}
+
+/// The mesh of a mesh file referenced by `link` (OBJ, every group merged, or STL). Any
+/// other format, and any unreadable file, is an error naming the link and the file.
+pub fn read_mesh_file(link: &str, path: &Path) -> Result<Mesh, ImportError> {
+    let fail =
+        |reason: String| ImportError::MeshFile { link: link.into(), file: path.into(), reason };
+    let extension = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
+    let bytes = std::fs::read(path).map_err(|e| fail(e.to_string()))?;
+    let (positions, triangles) = match extension.as_str() {
+        "obj" => {
+            let text = text::utf8(path, bytes).map_err(|e| fail(e.to_string()))?;
+            let groups = parse_obj(path, &text).map_err(|e| fail(e.to_string()))?;
+            merge_groups(groups)
+        }
+        "stl" => read_stl(&bytes).map_err(fail)?,
+        other => {
+            return Err(fail(format!(
+                "format {other:?} is not supported; convert the mesh to OBJ or STL"
+            )))
+        }
+    };
+    build_mesh(link, &positions, &triangles).map_err(|e| match e {
+        ImportError::EmptyMesh { .. } => fail("the file has no triangles".into()),
+        other => other,
+    })
+}
+
+/// All groups of an OBJ as one triangle soup.
+fn merge_groups(groups: Vec<ObjGroup>) -> (Vec<Point3>, Vec<[u32; 3]>) {
+    let (mut positions, mut triangles) = (Vec::new(), Vec::new());
+    for g in groups {
+        let offset = positions.len() as u32;
+        positions.extend(g.positions);
+        triangles.extend(g.triangles.into_iter().map(|t| t.map(|i| i + offset)));
+    }
+    (positions, triangles)
+}
+
+/// An STL file (ASCII or binary) as positions and triangles.
+pub fn read_stl(bytes: &[u8]) -> Result<(Vec<Point3>, Vec<[u32; 3]>), String> {
+    let mesh =
+        stl_io::read_stl(&mut Cursor::new(bytes)).map_err(|e| format!("not valid STL: {e}"))?;
+    let positions = mesh.vertices.iter().map(|v| Point3::new(v[0], v[1], v[2])).collect();
+    let mut triangles = Vec::with_capacity(mesh.faces.len());
+    for f in &mesh.faces {
+        let t = f.vertices.map(|i| u32::try_from(i).unwrap_or(u32::MAX));
+        triangles.push(t);
+    }
+    Ok((positions, triangles))
+}

@@ -1,0 +1,29 @@
+//! User assets: articulated objects read from URDF (with OBJ or STL meshes), from an OBJ
+//! with one group per part plus a JSON sidecar of joints, or from glTF / GLB with a node
+//! hierarchy; each becomes an [`ArticulatedObject`](crate::objects::ArticulatedObject) that
+//! the rest of the generator treats as it treats a built-in category.
+//!
+//! Every format is read into one plain intermediate, a [`skeleton::Skeleton`] of named
+//! links (meshes in the asset's rest frame) and named joints, and [`skeleton::assemble`]
+//! turns that into the model the same way for every format: fixed joints weld a link into
+//! its parent's part, links are ordered parent first with siblings by name, mimic joints
+//! are resolved, and every rule breach is a typed [`ImportError`]. Nothing here panics on
+//! bad input; `generator/fuzz` holds one fuzz target per parser.
+
+pub mod discover;
+pub mod error;
+pub mod gltf;
+pub mod load;
+pub mod mesh_build;
+pub mod mesh_files;
+pub mod obj_groups;
+pub mod options;
+pub mod sidecar;
+pub mod skeleton;
+pub mod text;
+pub mod urdf;
+
+pub use discover::discover_assets;
+pub use error::ImportError;
+pub use load::{load_asset, Imported};
+pub use options::ImportOptions;
