@@ -6,14 +6,18 @@ use std::path::{Path, PathBuf};
 
 use sha2::{Digest, Sha256};
 
-/// Every file under `dir`, sorted, so the hash does not depend on directory order.
+/// Every file under `dir`, sorted, so the hash does not depend on directory order. Each
+/// file and folder is also a `rerun-if-changed` path: cargo does not rescan a folder named
+/// by one line for edits inside it, so without these the hashes went stale.
 fn files(dir: &Path, out: &mut Vec<PathBuf>) {
+    println!("cargo:rerun-if-changed={}", dir.display());
     let Ok(entries) = std::fs::read_dir(dir) else { return };
     for entry in entries.flatten() {
         let path = entry.path();
         if path.is_dir() {
             files(&path, out);
         } else {
+            println!("cargo:rerun-if-changed={}", path.display());
             out.push(path);
         }
     }
@@ -23,7 +27,6 @@ fn main() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
     for krate in ["pairs", "baselines", "model"] {
         let src = root.join(krate).join("src");
-        println!("cargo:rerun-if-changed={}", src.display());
         let mut paths = Vec::new();
         files(&src, &mut paths);
         paths.sort();
