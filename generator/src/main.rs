@@ -73,14 +73,8 @@ struct Args {
     #[arg(long, value_name = "DIR")]
     package_path: Vec<PathBuf>,
     /// Range given to continuous (unlimited) joints of assets, degrees: LO,HI.
-    #[arg(
-        long,
-        value_name = "LO,HI",
-        value_delimiter = ',',
-        num_args = 2,
-        allow_negative_numbers = true
-    )]
-    continuous_range: Option<Vec<f64>>,
+    #[arg(long, value_name = "LO,HI", value_parser = parse_range, allow_hyphen_values = true)]
+    continuous_range: Option<[f64; 2]>,
     /// Output folder [default: datasets/<kind>, or datasets/<kind>-<split> for train and
     /// validation; datasets/assets-<kind> with --assets; reports/gallery with --gallery].
     #[arg(short, long, value_name = "DIR")]
@@ -134,6 +128,12 @@ fn parse_shard_arg(s: &str) -> Result<Shard, String> {
     parse_shard(s).map_err(|e| e.to_string())
 }
 
+fn parse_range(s: &str) -> Result<[f64; 2], String> {
+    let bad = || format!("{s:?} is not a range: write LO,HI in degrees, e.g. -90,90");
+    let (lo, hi) = s.split_once(',').ok_or_else(bad)?;
+    Ok([lo.trim().parse().map_err(|_| bad())?, hi.trim().parse().map_err(|_| bad())?])
+}
+
 fn parse_kind(s: &str) -> Result<PairKind, String> {
     match s.to_ascii_uppercase().as_str() {
         "SF2F" => Ok(PairKind::Sf2f),
@@ -172,8 +172,8 @@ impl Args {
         if !self.package_path.is_empty() || self.continuous_range.is_some() {
             let mut import = config.importer();
             import.package_paths.extend(self.package_path.iter().cloned());
-            if let Some(range) = &self.continuous_range {
-                import.continuous_range_deg = [range[0], range[1]];
+            if let Some(range) = self.continuous_range {
+                import.continuous_range_deg = range;
             }
             config.import = Some(import);
         }

@@ -27,7 +27,7 @@ pub fn extension(path: &Path) -> String {
 /// asset file found recursively.
 pub fn discover_assets(root: &Path) -> Result<Vec<PathBuf>, ImportError> {
     let meta =
-        std::fs::metadata(root).map_err(|source| ImportError::Io { path: root.into(), source })?;
+        std::fs::metadata(root).map_err(|error| ImportError::Io { path: root.into(), error })?;
     if meta.is_file() {
         return Ok(vec![root.into()]);
     }
@@ -41,7 +41,7 @@ fn walk(dir: &Path, depth: usize, found: &mut Vec<PathBuf>) -> Result<(), Import
     if depth > MAX_DEPTH {
         return Ok(());
     }
-    let io = |source| ImportError::Io { path: dir.into(), source };
+    let io = |error| ImportError::Io { path: dir.into(), error };
     let mut entries: Vec<_> =
         std::fs::read_dir(dir).map_err(io)?.collect::<Result<_, _>>().map_err(io)?;
     entries.sort_by_key(|e| e.file_name());
