@@ -29,7 +29,6 @@ pub fn parse_obj(path: &Path, text: &str) -> Result<Vec<ObjGroup>, ImportError> 
         triangulate: true,
         ignore_points: true,
         ignore_lines: true,
-        ..Default::default()
     };
     let (models, _materials) = tobj::load_obj_buf(&mut Cursor::new(text), &options, |_| {
         Ok((Vec::new(), Default::default()))

@@ -256,7 +256,8 @@ fn model_joint(
     }
     let axis = nalgebra::Vector3::from(raw.axis);
     let length = axis.norm();
-    if !(length > 1e-9) {
+    // The entries are finite here, so the length is too.
+    if length <= 1e-9 {
         return Err(ImportError::ZeroAxis { joint: name() });
     }
     let (lo, hi) = match (raw.kind, raw.limits) {
@@ -324,7 +325,7 @@ fn resolve_mimics(
         let (m, o) = (multiplier as Real, offset as Real);
         let (a, b) = (m * model[leader].limits.0 + o, m * model[leader].limits.1 + o);
         let limits = (a.min(b), a.max(b));
-        if !(limits.0 < limits.1) {
+        if limits.0 >= limits.1 || !limits.0.is_finite() || !limits.1.is_finite() {
             return Err(fail(format!("multiplier {multiplier} leaves no range of motion")));
         }
         model[i].limits = limits;
