@@ -66,7 +66,8 @@ struct Args {
     shard: Option<Shard>,
     /// Make the dataset from user assets instead of the built-in categories: an asset file,
     /// or a folder searched recursively for .urdf, .gltf, .glb, and .obj files with a
-    /// <name>.joints.json sidecar (docs/FORMAT.md, "User assets"). Each asset is one object.
+    /// <name>.joints.json sidecar (docs/FORMAT.md, "User assets"). Each asset is one object
+    /// (--objects, --split and --categories do not apply).
     #[arg(long, value_name = "PATH")]
     assets: Option<PathBuf>,
     /// Extra folder searched for URDF `package://` meshes (repeatable).
@@ -103,7 +104,7 @@ const EXAMPLES: &str = "Examples:
   generator --split train -n 20000 --out datasets/train   a training set on disk
   generator --shard 3/8 --out shards/3                    shard 3 of 8 (cluster array job)
   generator merge shards/* --out datasets/sf2f            the shards as one dataset
-  generator --assets my-models/ --kind sf2p --out /tmp/mine  pairs of your URDF/OBJ/glTF assets
+  generator --assets models/ --kind sf2p -o /tmp/m        pairs of your URDF, OBJ and glTF assets
   generator --gallery                                     reports/gallery/*.png";
 
 /// Subcommands besides generating.
