@@ -4,12 +4,12 @@
 
 use std::path::Path;
 
+use generator::import::assemble;
 use generator::import::gltf::gltf_skeleton;
 use generator::import::mesh_build::build_mesh;
 use generator::import::mesh_files::{parse_obj, read_stl};
 use generator::import::obj_groups::obj_skeleton;
 use generator::import::sidecar::{parse_sidecar, Sidecar};
-use generator::import::skeleton::assemble;
 use generator::import::urdf::{urdf_skeleton, MeshSearch};
 use generator::import::{ImportError, ImportOptions};
 

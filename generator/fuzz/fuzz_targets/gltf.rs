@@ -3,8 +3,8 @@
 
 use std::path::Path;
 
+use generator::import::assemble;
 use generator::import::gltf::gltf_skeleton;
-use generator::import::skeleton::assemble;
 use generator::import::ImportError;
 use libfuzzer_sys::fuzz_target;
 

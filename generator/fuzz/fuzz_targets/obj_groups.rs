@@ -4,9 +4,9 @@
 
 use std::path::Path;
 
+use generator::import::assemble;
 use generator::import::obj_groups::obj_skeleton;
 use generator::import::sidecar::parse_sidecar;
-use generator::import::skeleton::assemble;
 use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {

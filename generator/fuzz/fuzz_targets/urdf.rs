@@ -3,7 +3,7 @@
 
 use std::path::Path;
 
-use generator::import::skeleton::assemble;
+use generator::import::assemble;
 use generator::import::urdf::{urdf_skeleton, MeshSearch};
 use generator::import::ImportOptions;
 use libfuzzer_sys::fuzz_target;
