@@ -5,7 +5,8 @@ use std::path::{Path, PathBuf};
 use super::sidecar::sidecar_path;
 use super::ImportError;
 
-/// Deepest folder nesting searched (symbolic links to folders are not followed).
+/// Deepest folder nesting searched (symbolic links to files are followed, to folders not,
+/// so that a link cycle cannot loop).
 const MAX_DEPTH: usize = 64;
 
 /// Whether `path` is an asset's main file: a `.urdf`, `.gltf` or `.glb`, or an `.obj`
@@ -50,7 +51,7 @@ fn walk(dir: &Path, depth: usize, found: &mut Vec<PathBuf>) -> Result<(), Import
         let kind = entry.file_type().map_err(io)?;
         if kind.is_dir() {
             walk(&path, depth + 1, found)?;
-        } else if kind.is_file() && is_asset(&path) {
+        } else if (kind.is_file() || kind.is_symlink() && path.is_file()) && is_asset(&path) {
             found.push(path);
         }
     }
