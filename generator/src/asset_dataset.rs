@@ -106,7 +106,13 @@ fn asset_record(
     index: u32,
     source: &AssetSource,
 ) -> Result<AssetRecord, GenerateError> {
-    let file = FileEntry::of(&source.path)?;
+    // An asset that could not be read may not be readable for a checksum either; it is
+    // recorded with an empty one rather than failing the whole dataset.
+    let file = match (FileEntry::of(&source.path), &source.loaded) {
+        (Ok(file), _) => file,
+        (Err(_), Err(_)) => FileEntry { bytes: 0, sha256: String::new() },
+        (Err(e), Ok(_)) => return Err(e.into()),
+    };
     let mut files = std::collections::BTreeMap::new();
     if let Ok(imported) = &source.loaded {
         for f in &imported.files {

@@ -66,21 +66,16 @@ struct Args {
     shard: Option<Shard>,
     /// Make the dataset from user assets instead of the built-in categories: an asset file,
     /// or a folder searched recursively for .urdf, .gltf, .glb, and .obj files with a
-    /// <name>.joints.json sidecar (docs/FORMAT.md, "User assets"). Each asset is one object.
+    /// <name>.joints.json sidecar (docs/FORMAT.md, "User assets"). Each asset is one object
+    /// (--objects, --split and --categories do not apply).
     #[arg(long, value_name = "PATH")]
     assets: Option<PathBuf>,
     /// Extra folder searched for URDF `package://` meshes (repeatable).
     #[arg(long, value_name = "DIR")]
     package_path: Vec<PathBuf>,
     /// Range given to continuous (unlimited) joints of assets, degrees: LO,HI.
-    #[arg(
-        long,
-        value_name = "LO,HI",
-        value_delimiter = ',',
-        num_args = 2,
-        allow_negative_numbers = true
-    )]
-    continuous_range: Option<Vec<f64>>,
+    #[arg(long, value_name = "LO,HI", value_parser = parse_range, allow_hyphen_values = true)]
+    continuous_range: Option<[f64; 2]>,
     /// Output folder [default: datasets/<kind>, or datasets/<kind>-<split> for train and
     /// validation; datasets/assets-<kind> with --assets; reports/gallery with --gallery].
     #[arg(short, long, value_name = "DIR")]
@@ -109,7 +104,7 @@ const EXAMPLES: &str = "Examples:
   generator --split train -n 20000 --out datasets/train   a training set on disk
   generator --shard 3/8 --out shards/3                    shard 3 of 8 (cluster array job)
   generator merge shards/* --out datasets/sf2f            the shards as one dataset
-  generator --assets my-models/ --kind sf2p --out /tmp/mine  pairs of your URDF/OBJ/glTF assets
+  generator --assets models/ --kind sf2p -o /tmp/m        pairs of your URDF, OBJ and glTF assets
   generator --gallery                                     reports/gallery/*.png";
 
 /// Subcommands besides generating.
@@ -132,6 +127,12 @@ enum Command {
 
 fn parse_shard_arg(s: &str) -> Result<Shard, String> {
     parse_shard(s).map_err(|e| e.to_string())
+}
+
+fn parse_range(s: &str) -> Result<[f64; 2], String> {
+    let bad = || format!("{s:?} is not a range: write LO,HI in degrees, e.g. -90,90");
+    let (lo, hi) = s.split_once(',').ok_or_else(bad)?;
+    Ok([lo.trim().parse().map_err(|_| bad())?, hi.trim().parse().map_err(|_| bad())?])
 }
 
 fn parse_kind(s: &str) -> Result<PairKind, String> {
@@ -172,8 +173,8 @@ impl Args {
         if !self.package_path.is_empty() || self.continuous_range.is_some() {
             let mut import = config.importer();
             import.package_paths.extend(self.package_path.iter().cloned());
-            if let Some(range) = &self.continuous_range {
-                import.continuous_range_deg = [range[0], range[1]];
+            if let Some(range) = self.continuous_range {
+                import.continuous_range_deg = range;
             }
             config.import = Some(import);
         }

@@ -291,3 +291,42 @@ fn a_folder_with_a_broken_asset_still_gives_the_others_pairs() {
         .iter()
         .all(|p| p.provenance().category == "lamp" && p.provenance().object_id == 1));
 }
+
+#[test]
+fn a_gltf_takes_its_joints_from_a_sidecar_instead_of_extras() {
+    let text = std::fs::read_to_string(examples().join("gltf/lamp.gltf")).expect("example");
+    let mut json: serde_json::Value = serde_json::from_str(&text).expect("json");
+    for node in json["nodes"].as_array_mut().expect("nodes") {
+        node.as_object_mut().expect("node").remove("extras");
+    }
+    let dir = tempfile::tempdir().expect("tempdir");
+    let path = dir.path().join("lamp.gltf");
+    std::fs::write(&path, serde_json::to_vec(&json).expect("json")).expect("write");
+    let sidecar = dir.path().join("lamp.joints.json");
+    std::fs::copy(examples().join("obj/lamp.joints.json"), &sidecar).expect("copy");
+    let imported = load_asset(&path, &ImportOptions::default()).expect("glTF with sidecar");
+    assert_eq!(imported.object, lamp("obj/lamp.obj"));
+    assert_eq!(imported.files, vec![sidecar]);
+}
+
+#[test]
+fn package_meshes_are_found_on_the_package_path() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let (robot, packages) = (dir.path().join("robot"), dir.path().join("share"));
+    std::fs::create_dir_all(robot.join("urdf")).expect("mkdir");
+    std::fs::create_dir_all(packages.join("lamp_description/meshes")).expect("mkdir");
+    for mesh in ["base.stl", "pole.obj", "arm.obj", "shade.stl"] {
+        let from = examples().join("urdf/meshes").join(mesh);
+        std::fs::copy(from, packages.join("lamp_description/meshes").join(mesh)).expect("copy");
+    }
+    let urdf = std::fs::read_to_string(examples().join("urdf/lamp.urdf")).expect("urdf");
+    let urdf = urdf
+        .replace("\"meshes/", "\"package://lamp_description/meshes/")
+        .replace("package://lamp/", "package://lamp_description/");
+    let path = robot.join("urdf/lamp.urdf");
+    std::fs::write(&path, urdf).expect("write");
+    let missing = load_asset(&path, &ImportOptions::default()).expect_err("not on the path");
+    assert!(missing.to_string().contains("package://lamp_description/meshes/"), "{missing}");
+    let options = ImportOptions { package_paths: vec![packages], ..Default::default() };
+    assert_eq!(load_asset(&path, &options).expect("found").object, lamp("urdf/lamp.urdf"));
+}

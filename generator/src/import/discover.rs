@@ -5,7 +5,8 @@ use std::path::{Path, PathBuf};
 use super::sidecar::sidecar_path;
 use super::ImportError;
 
-/// Deepest folder nesting searched (symbolic links to folders are not followed).
+/// Deepest folder nesting searched (symbolic links to files are followed, to folders not,
+/// so that a link cycle cannot loop).
 const MAX_DEPTH: usize = 64;
 
 /// Whether `path` is an asset's main file: a `.urdf`, `.gltf` or `.glb`, or an `.obj`
@@ -27,7 +28,7 @@ pub fn extension(path: &Path) -> String {
 /// asset file found recursively.
 pub fn discover_assets(root: &Path) -> Result<Vec<PathBuf>, ImportError> {
     let meta =
-        std::fs::metadata(root).map_err(|source| ImportError::Io { path: root.into(), source })?;
+        std::fs::metadata(root).map_err(|error| ImportError::Io { path: root.into(), error })?;
     if meta.is_file() {
         return Ok(vec![root.into()]);
     }
@@ -41,7 +42,7 @@ fn walk(dir: &Path, depth: usize, found: &mut Vec<PathBuf>) -> Result<(), Import
     if depth > MAX_DEPTH {
         return Ok(());
     }
-    let io = |source| ImportError::Io { path: dir.into(), source };
+    let io = |error| ImportError::Io { path: dir.into(), error };
     let mut entries: Vec<_> =
         std::fs::read_dir(dir).map_err(io)?.collect::<Result<_, _>>().map_err(io)?;
     entries.sort_by_key(|e| e.file_name());
@@ -50,7 +51,7 @@ fn walk(dir: &Path, depth: usize, found: &mut Vec<PathBuf>) -> Result<(), Import
         let kind = entry.file_type().map_err(io)?;
         if kind.is_dir() {
             walk(&path, depth + 1, found)?;
-        } else if kind.is_file() && is_asset(&path) {
+        } else if (kind.is_file() || kind.is_symlink() && path.is_file()) && is_asset(&path) {
             found.push(path);
         }
     }

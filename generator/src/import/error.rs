@@ -10,12 +10,13 @@ use crate::objects::ObjectError;
 #[non_exhaustive]
 pub enum ImportError {
     /// A file could not be read (missing, unreadable). Fix: check the path.
-    #[error("reading {path}: {source}")]
+    #[error("reading {path}: {error}")]
     Io {
         /// The file.
         path: PathBuf,
-        /// The operating system's error.
-        source: std::io::Error,
+        /// The operating system's error (in the message, so that a manifest's error text
+        /// is complete on its own).
+        error: std::io::Error,
     },
     /// A text file (URDF, OBJ, sidecar, glTF JSON) is not UTF-8; names must be UTF-8.
     #[error("{path} is not UTF-8 text (first bad byte at offset {offset})")]

@@ -2,10 +2,10 @@
 
 use std::path::{Path, PathBuf};
 
+use super::assembly::assemble;
 use super::discover::extension;
 use super::gltf::read_gltf_asset;
 use super::obj_groups::read_obj_asset;
-use super::skeleton::assemble;
 use super::urdf::read_urdf_asset;
 use super::{ImportError, ImportOptions};
 use crate::objects::ArticulatedObject;

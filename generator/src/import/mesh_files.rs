@@ -29,7 +29,6 @@ pub fn parse_obj(path: &Path, text: &str) -> Result<Vec<ObjGroup>, ImportError> 
         triangulate: true,
         ignore_points: true,
         ignore_lines: true,
-        ..Default::default()
     };
     let (models, _materials) = tobj::load_obj_buf(&mut Cursor::new(text), &options, |_| {
         Ok((Vec::new(), Default::default()))
@@ -116,4 +115,44 @@ pub fn read_stl(bytes: &[u8]) -> Result<(Vec<Point3>, Vec<[u32; 3]>), String> {
         triangles.push(t);
     }
     Ok((positions, triangles))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn binary_and_ascii_stl_give_one_mesh() {
+        let corners = [[0f32, 0., 0.], [1., 0., 0.], [0., 1., 0.], [0., 0., 1.]];
+        let faces = [[0usize, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]];
+        let mut ascii = String::from("solid t\n");
+        let mut binary = vec![0u8; 80];
+        binary.extend((faces.len() as u32).to_le_bytes());
+        for f in faces {
+            ascii.push_str("facet normal 0 0 0\nouter loop\n");
+            binary.extend([0u8; 12]);
+            for v in f {
+                let [x, y, z] = corners[v];
+                ascii.push_str(&format!("vertex {x} {y} {z}\n"));
+                [x, y, z].iter().for_each(|c| binary.extend(c.to_le_bytes()));
+            }
+            ascii.push_str("endloop\nendfacet\n");
+            binary.extend([0u8; 2]);
+        }
+        ascii.push_str("endsolid t\n");
+        let (a, b) =
+            (read_stl(ascii.as_bytes()).expect("ascii"), read_stl(&binary).expect("binary"));
+        assert_eq!(a, b);
+        let mesh = build_mesh("t", &a.0, &a.1).expect("mesh");
+        assert_eq!((mesh.vertices.len(), mesh.triangles.len()), (4, 4));
+        assert!(read_stl(&binary[..100]).is_err(), "a cut file is an error");
+    }
+
+    #[test]
+    fn obj_groups_split_by_usemtl_are_one_part() {
+        let text = "g a\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nusemtl x\nf 1 2 3\nusemtl y\nf 1 2 4\ng b\nf 2 3 4\n";
+        let groups = parse_obj(Path::new("t.obj"), text).expect("obj");
+        let names: Vec<_> = groups.iter().map(|g| (g.name.as_str(), g.triangles.len())).collect();
+        assert_eq!(names, [("a", 2), ("b", 1)]);
+    }
 }

@@ -4,15 +4,17 @@
 //! the rest of the generator treats as it treats a built-in category.
 //!
 //! Every format is read into one plain intermediate, a [`skeleton::Skeleton`] of named
-//! links (meshes in the asset's rest frame) and named joints, and [`skeleton::assemble`]
+//! links (meshes in the asset's rest frame) and named joints, and [`assembly::assemble`]
 //! turns that into the model the same way for every format: fixed joints weld a link into
 //! its parent's part, links are ordered parent first with siblings by name, mimic joints
 //! are resolved, and every rule breach is a typed [`ImportError`]. Nothing here panics on
 //! bad input; `generator/fuzz` holds one fuzz target per parser.
 
+pub mod assembly;
 pub mod discover;
 pub mod error;
 pub mod gltf;
+pub mod gltf_data;
 pub mod load;
 pub mod mesh_build;
 pub mod mesh_files;
@@ -23,6 +25,7 @@ pub mod skeleton;
 pub mod text;
 pub mod urdf;
 
+pub use assembly::assemble;
 pub use discover::discover_assets;
 pub use error::ImportError;
 pub use load::{load_asset, Imported};

@@ -6,7 +6,7 @@ use super::ImportError;
 
 /// The whole file.
 pub fn read_bytes(path: &Path) -> Result<Vec<u8>, ImportError> {
-    std::fs::read(path).map_err(|source| ImportError::Io { path: path.into(), source })
+    std::fs::read(path).map_err(|error| ImportError::Io { path: path.into(), error })
 }
 
 /// The file as UTF-8 text; names in URDF, OBJ and sidecar files must be UTF-8.
