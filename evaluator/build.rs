@@ -1,10 +1,14 @@
 //! Hashes the source of the crates whose code makes the evaluator's rows (`pairs`,
-//! `baselines`, `model`), so a row's cached runs are recomputed when its code changes, not
-//! only when its parameters or weights do (`SOURCE_HASH_<CRATE>` at compile time).
+//! `baselines`, `model`), the evaluator's own code that runs and scores them (`SCORING`:
+//! run, score, record, reference, tuning) and `Cargo.lock` (`LOCK`: a dependency's new
+//! version can move a number), so a row's cached runs are recomputed when any of it changes,
+//! not only when its parameters or weights do (`SOURCE_HASH_<NAME>` at compile time).
 
 use std::path::{Path, PathBuf};
 
-use sha2::{Digest, Sha256};
+#[path = "src/source_hash.rs"]
+#[allow(dead_code)]
+mod source_hash;
 
 /// Every file under `dir`, sorted, so the hash does not depend on directory order. Each
 /// file and folder is also a `rerun-if-changed` path: cargo does not rescan a folder named
@@ -23,20 +27,27 @@ fn files(dir: &Path, out: &mut Vec<PathBuf>) {
     }
 }
 
+/// Prints `SOURCE_HASH_<name>` of `paths`.
+fn emit(name: &str, base: &Path, paths: Vec<PathBuf>) {
+    println!("cargo:rustc-env=SOURCE_HASH_{name}={}", source_hash::hash_files(base, &paths));
+}
+
 fn main() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("..");
     for krate in ["pairs", "baselines", "model"] {
         let src = root.join(krate).join("src");
         let mut paths = Vec::new();
         files(&src, &mut paths);
-        paths.sort();
-        let mut hash = Sha256::new();
-        for path in paths {
-            hash.update(path.strip_prefix(&src).unwrap_or(&path).to_string_lossy().as_bytes());
-            hash.update(std::fs::read(&path).unwrap_or_default());
-        }
-        let digest = hash.finalize();
-        let short: String = digest.iter().take(8).map(|b| format!("{b:02x}")).collect();
-        println!("cargo:rustc-env=SOURCE_HASH_{}={short}", krate.to_uppercase());
+        emit(&krate.to_uppercase(), &src, paths);
     }
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    println!("cargo:rerun-if-changed={}", src.join("source_hash.rs").display());
+    let scoring: Vec<PathBuf> = source_hash::SCORING.iter().map(|f| src.join(f)).collect();
+    for path in &scoring {
+        println!("cargo:rerun-if-changed={}", path.display());
+    }
+    emit("SCORING", &src, scoring);
+    let lock = root.join("Cargo.lock");
+    println!("cargo:rerun-if-changed={}", lock.display());
+    emit("LOCK", &root, vec![lock]);
 }

@@ -21,7 +21,9 @@
 //! [`pairs::MethodError`]) and never returns NaN. Every threshold is a `…Params` field with
 //! a documented `Default`; the inlier thresholds, SC's scales, ICP's trimming and NRR's
 //! part threshold were chosen on the validation split by `examples/sweep.rs`
-//! (`reports/baselines_sweep.csv`).
+//! (`reports/baselines_sweep.csv`). Those are starting points: the evaluator's leaderboards
+//! cross-validate the segmenters' thresholds and NRR's part threshold on the validation
+//! sets for each flow source they are scored on (`evaluator::tuning`, `reports/tuning/`).
 //!
 //! Modules follow the math: [`geometry`] (k-d tree neighbours, local-PCA normals, sample
 //! motion fits, seeding and sampling, input checks), [`labels`] (label post-processing

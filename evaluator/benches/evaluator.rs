@@ -31,7 +31,7 @@ fn evaluation_overhead(c: &mut Criterion) {
     let dir = tempfile::tempdir().expect("a temporary folder");
     let specs: Vec<DatasetSpec> = ["a", "b", "c"]
         .iter()
-        .map(|name| DatasetSpec { name: (*name).into(), config: GeneratorConfig::default() })
+        .map(|name| DatasetSpec::generated(name, GeneratorConfig::default()))
         .collect();
     let mut registry = Registry::new();
     registry.oracle();
@@ -43,6 +43,7 @@ fn evaluation_overhead(c: &mut Criterion) {
         reports: dir.path().join("reports"),
         force: true,
         gallery_pairs: 3,
+        validation: Vec::new(),
     };
     // Generate the three datasets once, outside the measurement.
     evaluate(&registry, &specs, &options, &NoProgress).expect("the first evaluation runs");

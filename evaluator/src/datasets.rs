@@ -4,9 +4,10 @@
 
 use std::path::{Path, PathBuf};
 
+use generator::categories::Split;
 use generator::config::GeneratorConfig;
-use generator::generate::generate_dataset;
-use pairs::dataset::{Dataset, PAIRS_FILE};
+use generator::generate::{dataset_origin, generate_dataset};
+use pairs::dataset::{Dataset, Manifest, PAIRS_FILE};
 use pairs::{Pair, PairKind};
 
 use crate::error::EvalError;
@@ -16,15 +17,66 @@ use crate::error::EvalError;
 pub struct DatasetSpec {
     /// Leaderboard name (`sf2f`).
     pub name: String,
-    /// The generator config that makes it when it is missing.
-    pub config: GeneratorConfig,
+    /// The generator config that makes it when it is missing (or stale); `None` for a user's
+    /// dataset (`--dataset NAME=PATH`), which is only read.
+    pub config: Option<GeneratorConfig>,
+    /// Its folder, when it is not `<root>/<name>`.
+    pub path: Option<PathBuf>,
 }
 
 impl DatasetSpec {
-    /// Its folder under `root` (`datasets/<name>`).
-    pub fn dir(&self, root: &Path) -> PathBuf {
-        root.join(&self.name)
+    /// A dataset of the generator's defaults for `kind`'s test protocol, named `name`.
+    pub fn generated(name: &str, config: GeneratorConfig) -> Self {
+        Self { name: name.to_owned(), config: Some(config), path: None }
     }
+
+    /// A dataset the generator already wrote into `path` (from `--assets` too), scored under
+    /// `name`.
+    pub fn user(name: &str, path: &Path) -> Self {
+        Self { name: name.to_owned(), config: None, path: Some(path.to_path_buf()) }
+    }
+
+    /// Its folder: the given path, or `<root>/<name>`.
+    pub fn dir(&self, root: &Path) -> PathBuf {
+        self.path.clone().unwrap_or_else(|| root.join(&self.name))
+    }
+}
+
+/// Parses `NAME=PATH` (the `--dataset` flag).
+pub fn parse_user_dataset(arg: &str) -> Result<DatasetSpec, String> {
+    let (name, path) = arg
+        .split_once('=')
+        .filter(|(n, p)| !n.is_empty() && !p.is_empty())
+        .ok_or_else(|| format!("{arg:?}: expected NAME=PATH (e.g. lamps=datasets/lamps)"))?;
+    if !name.chars().all(|c| c.is_ascii_alphanumeric() || c == '-' || c == '_') {
+        return Err(format!("{name:?}: a dataset name has only letters, digits, '-' and '_'"));
+    }
+    Ok(DatasetSpec::user(name, Path::new(path)))
+}
+
+/// Seed of the validation sets (the model trainer's validation seed).
+pub const VALIDATION_SEED: u64 = 20_181_201;
+
+/// Objects per validation set: 10 objects of the 3 validation categories in turn, 5 pairs
+/// each, so 50 pairs per kind and 150 over the three kinds.
+pub const VALIDATION_OBJECTS: u32 = 10;
+
+/// The validation sets the baselines are tuned on: the default datasets' protocol and kinds
+/// (full and scanned, as the test sets are) on the validation categories, named
+/// `val-<kind>`. No test pair is in them: their categories are the validation split's.
+pub fn validation_datasets() -> Vec<DatasetSpec> {
+    [PairKind::Sf2f, PairKind::Sf2p, PairKind::Sp2p]
+        .into_iter()
+        .map(|kind| {
+            let config = GeneratorConfig {
+                split: Split::Validation,
+                objects: VALIDATION_OBJECTS,
+                seed: VALIDATION_SEED,
+                ..GeneratorConfig::of_kind(kind)
+            };
+            DatasetSpec::generated(&format!("val-{}", kind.as_str().to_lowercase()), config)
+        })
+        .collect()
 }
 
 /// The default datasets: the paper's three synthetic test sets (SF2F, SF2P, SP2P) on the
@@ -32,9 +84,8 @@ impl DatasetSpec {
 pub fn default_datasets() -> Vec<DatasetSpec> {
     [PairKind::Sf2f, PairKind::Sf2p, PairKind::Sp2p]
         .into_iter()
-        .map(|kind| DatasetSpec {
-            name: kind.as_str().to_lowercase(),
-            config: GeneratorConfig::of_kind(kind),
+        .map(|kind| {
+            DatasetSpec::generated(&kind.as_str().to_lowercase(), GeneratorConfig::of_kind(kind))
         })
         .collect()
 }
@@ -49,22 +100,56 @@ pub struct LoadedDataset {
     /// sha256 of `pairs.mcap` as the manifest records it, plus the limit: a cached run made on
     /// other data does not match.
     pub content_hash: String,
+    /// The category split its manifest's config names (`None` when it names none).
+    pub split: Option<Split>,
 }
 
-/// Generates `spec` into `root` unless it already holds a dataset; `progress(done, total)`
-/// follows the pairs written. Returns whether it generated.
+/// Why a generated dataset on disk no longer matches its spec, if it does not: another
+/// generator version, or another config.
+pub fn stale_reason(spec: &DatasetSpec, manifest: &Manifest) -> Option<String> {
+    let config = spec.config.as_ref()?;
+    let expected = dataset_origin(config, None);
+    if manifest.origin.generator_version != expected.generator_version {
+        return Some(format!(
+            "made by generator {}, this is {}",
+            manifest.origin.generator_version, expected.generator_version
+        ));
+    }
+    (manifest.origin.config != expected.config)
+        .then(|| "its manifest's config differs from the evaluator's spec".to_owned())
+}
+
+/// Generates `spec` into `root` unless it already holds a dataset made by this generator
+/// from the same config; a stale one is regenerated (replaced only once the new one is
+/// complete), with `notice` told why. `progress(done, total)` follows the pairs written.
+/// Returns whether it generated. A user's dataset is never generated: a missing one is an
+/// error naming its folder.
 pub fn ensure_dataset(
     spec: &DatasetSpec,
     root: &Path,
+    notice: &dyn Fn(&str),
     progress: impl FnMut(u64, u64),
 ) -> Result<bool, EvalError> {
     let dir = spec.dir(root);
-    if dir.join(pairs::dataset::MANIFEST_FILE).exists() {
+    let Some(config) = &spec.config else {
+        Manifest::read(&dir)
+            .map_err(|source| EvalError::Dataset { name: spec.name.clone(), source })?;
         return Ok(false);
+    };
+    let mut overwrite = false;
+    if dir.join(pairs::dataset::MANIFEST_FILE).exists() {
+        match Manifest::read(&dir).map(|m| stale_reason(spec, &m)) {
+            Ok(None) => return Ok(false),
+            Ok(Some(why)) => {
+                notice(&format!("regenerating {} ({}): {why}", spec.name, dir.display()))
+            }
+            Err(e) => notice(&format!("regenerating {} ({}): {e}", spec.name, dir.display())),
+        }
+        overwrite = true;
     }
-    let total = spec.config.total_pairs();
+    let total = config.total_pairs();
     let mut progress = progress;
-    generate_dataset(&spec.config, &dir, false, None, |n| progress(n, total))
+    generate_dataset(config, &dir, overwrite, None, |n| progress(n, total))
         .map_err(|e| EvalError::Generate { name: spec.name.clone(), source: Box::new(e) })?;
     Ok(true)
 }
@@ -81,6 +166,13 @@ pub fn load_dataset(
     dataset.verify().map_err(err)?;
     let hash =
         dataset.manifest().files.get(PAIRS_FILE).map(|f| f.sha256.clone()).unwrap_or_default();
+    let split = dataset
+        .manifest()
+        .origin
+        .config
+        .get("split")
+        .and_then(|s| s.as_str())
+        .and_then(|s| s.parse().ok());
     let pairs: Vec<Pair> = dataset
         .pairs()
         .map_err(err)?
@@ -91,5 +183,43 @@ pub fn load_dataset(
         Some(l) => format!("{hash}:first{l}"),
         None => hash,
     };
-    Ok(LoadedDataset { name: name.to_owned(), pairs, content_hash })
+    if pairs.is_empty() {
+        return Err(EvalError::EmptyDataset { name: name.to_owned(), dir: dir.to_path_buf() });
+    }
+    Ok(LoadedDataset { name: name.to_owned(), pairs, content_hash, split })
+}
+
+/// The file under the reports folder that remembers the user datasets scored into it, so
+/// their rows stay in the boards when a later run does not name them again.
+pub const USER_DATASETS_FILE: &str = "user_datasets.json";
+
+/// The user datasets remembered in `reports` (name → folder), in name order; none when the
+/// file is missing or unreadable.
+pub fn remembered_datasets(reports: &Path) -> Vec<DatasetSpec> {
+    let Ok(text) = std::fs::read_to_string(reports.join(USER_DATASETS_FILE)) else {
+        return Vec::new();
+    };
+    let map: std::collections::BTreeMap<String, PathBuf> =
+        serde_json::from_str(&text).unwrap_or_default();
+    map.iter().map(|(name, path)| DatasetSpec::user(name, path)).collect()
+}
+
+/// Remembers `specs`' user datasets in `reports` beside the ones already there.
+pub fn remember_datasets(reports: &Path, specs: &[DatasetSpec]) -> Result<(), EvalError> {
+    let mut map: std::collections::BTreeMap<String, PathBuf> =
+        remembered_datasets(reports).into_iter().filter_map(|s| Some((s.name, s.path?))).collect();
+    for spec in specs {
+        if let (None, Some(path)) = (&spec.config, &spec.path) {
+            map.insert(spec.name.clone(), path.clone());
+        }
+    }
+    let path = reports.join(USER_DATASETS_FILE);
+    if map.is_empty() && !path.exists() {
+        return Ok(());
+    }
+    let json = serde_json::to_string_pretty(&map).expect("a name map serialises");
+    crate::files::replace_file(&path, |out| {
+        std::io::Write::write_all(out, json.as_bytes())
+            .map_err(|source| EvalError::Io { path: path.clone(), source })
+    })
 }

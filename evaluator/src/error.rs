@@ -68,6 +68,22 @@ pub enum EvalError {
         /// What went wrong.
         message: String,
     },
+    /// Tuning was asked to read a dataset outside the validation split.
+    #[error("dataset {name} is of the {split} split: baselines are tuned on validation data only")]
+    NotValidation {
+        /// The dataset's name.
+        name: String,
+        /// Its split.
+        split: String,
+    },
+    /// A dataset holds no pairs.
+    #[error("dataset {name} ({}) holds no pairs", dir.display())]
+    EmptyDataset {
+        /// The dataset's name.
+        name: String,
+        /// Its folder.
+        dir: PathBuf,
+    },
     /// The network's weights could not be loaded.
     #[error("network weights {path}: {message}")]
     Weights {

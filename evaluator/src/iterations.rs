@@ -1,6 +1,6 @@
-//! The paper's Table 3: the iterative network (`net-iter`) scored after every pass, as
+//! The paper's Table 4: the iterative network (`net-iter`) scored after every pass, as
 //! `iterations.csv` (one row per dataset and iteration: EPE, RI, IoU, and how many pairs
-//! were still changing) and `iterations.svg`/`.png` (the three curves); and `joints.csv`,
+//! were still changing) and `iterations.svg`/`.png` (the three curves); and `iterations_joints.csv`,
 //! the joints estimated from its first and last passes ([`crate::joints`]). A pair that
 //! converged before iteration t keeps its last pass's prediction at t, as the procedure
 //! stops there. Averages follow the leaderboards: EPE and RI over pairs, IoU over all
@@ -138,7 +138,7 @@ pub fn iteration_table(
     (rows, joint_rows)
 }
 
-/// Writes `iterations.csv`, the plot and `joints.csv` into `dir`; returns the files written.
+/// Writes `iterations.csv`, the plot and `iterations_joints.csv` into `dir`; returns the files written.
 pub fn write_iterations(
     dir: &Path,
     rows: &[IterationRow],
@@ -161,7 +161,7 @@ pub fn write_iterations(
         }
         Ok(())
     })?;
-    let joints_csv = dir.join("joints.csv");
+    let joints_csv = dir.join("iterations_joints.csv");
     replace_file(&joints_csv, |w| {
         writeln!(w, "dataset,method,joints,type_accuracy,estimated,median_axis_error_deg,median_pivot_distance")
             .map_err(io(&joints_csv))?;
@@ -312,7 +312,8 @@ mod tests {
         assert!(files.iter().all(|f| f.exists()));
         let csv = std::fs::read_to_string(dir.path().join("iterations.csv")).expect("read");
         assert_eq!(csv.lines().nth(2), Some("sf2f,2,2,2,0.060000,0.600000,0.400000"));
-        let joints_csv = std::fs::read_to_string(dir.path().join("joints.csv")).expect("read");
+        let joints_csv =
+            std::fs::read_to_string(dir.path().join("iterations_joints.csv")).expect("read");
         assert!(joints_csv.lines().nth(1).expect("a row").starts_with("sf2f,net-iter,2,0.5000,0,"));
     }
 }

@@ -1,9 +1,11 @@
 //! The leaderboards (polars): per-pair results of every row on every dataset, gathered in one
 //! DataFrame, summed per (dataset, method, flow source) and turned into
-//! `leaderboard_flow.csv`, `leaderboard_seg.csv` and `timings.csv`. Means follow
-//! docs/METRICS.md: EPE, PCC and RI average over scored pairs, IoU over all ground-truth
-//! parts, motion errors over all matched parts. Failed pairs are left out of the means and
-//! counted in `failed`.
+//! `leaderboard_flow.csv`, `leaderboard_seg.csv`, `joints.csv`, `leaderboard_by_category.csv`
+//! (every segmentation row per category and per joint-type mix) and `timings.csv`. Means
+//! follow docs/METRICS.md: EPE, PCC and RI average over scored pairs, IoU over all
+//! ground-truth parts, motion errors over all matched parts (with the matched parts per pair
+//! beside them), joint errors over the joints that have each. Failed pairs are left out of
+//! the means and counted in `failed`. The `oracle` column marks rows that read the truth.
 
 use std::path::Path;
 
@@ -32,6 +34,10 @@ pub struct Leaderboards {
     pub flow: DataFrame,
     /// Segmentation accuracy per (dataset, method, flow source).
     pub seg: DataFrame,
+    /// Joint estimation per (dataset, method, flow source), for rows that yield motions.
+    pub joints: DataFrame,
+    /// Segmentation accuracy per row and category, and per row and joint-type mix.
+    pub by_category: DataFrame,
     /// Milliseconds per pair and peak memory per (dataset, row).
     pub timings: DataFrame,
     /// The mean PCC curve of every row of the flow leaderboard.
@@ -59,8 +65,14 @@ fn numbers(table: &RunTable, name: &str) -> Vec<Option<f64>> {
     table.rows.iter().map(|r| i.and_then(|i| r[i].parse().ok())).collect()
 }
 
+/// Key columns of the per-pair frame: the row's and the pair's.
+const KEYS: [&str; 6] = ["dataset", "method", "flow_source", "oracle", "category", "joint_types"];
+
+/// The keys a row is identified by on the boards.
+const ROW_KEYS: [&str; 4] = ["dataset", "method", "flow_source", "oracle"];
+
 /// Numeric per-pair columns summed by the leaderboards.
-const SUMMED: [&str; 14] = [
+const SUMMED: [&str; 24] = [
     "epe",
     "ri",
     "iou_sum",
@@ -75,12 +87,22 @@ const SUMMED: [&str; 14] = [
     "failed",
     "scored",
     "parts_right",
+    "joints",
+    "joints_typed",
+    "axis_sum",
+    "axis_n",
+    "line_sum",
+    "line_n",
+    "state_rev_sum",
+    "state_rev_n",
+    "state_pri_sum",
+    "state_pri_n",
 ];
 
 /// The per-pair frame of the runs that `keep` selects.
 fn pairs_frame(runs: &[Scored], keep: impl Fn(Board) -> bool) -> Result<DataFrame, EvalError> {
     let runs: Vec<&Scored> = runs.iter().filter(|r| keep(r.entry.board)).collect();
-    let mut keys: [Vec<String>; 3] = Default::default();
+    let mut keys: [Vec<String>; 6] = Default::default();
     let mut columns: Vec<Vec<Option<f64>>> = vec![Vec::new(); SUMMED.len() + 1 + PCC_THRESHOLDS];
     for run in runs {
         let table = &run.result.table;
@@ -88,6 +110,13 @@ fn pairs_frame(runs: &[Scored], keep: impl Fn(Board) -> bool) -> Result<DataFram
         keys[0].extend(std::iter::repeat_n(run.dataset.to_owned(), n));
         keys[1].extend(std::iter::repeat_n(run.entry.name.clone(), n));
         keys[2].extend(std::iter::repeat_n(run.entry.flow_source(), n));
+        keys[3].extend(std::iter::repeat_n(run.entry.oracle.to_string(), n));
+        let cell = |name: &str| table.header.iter().position(|h| h == name);
+        let (category, joint_types) = (cell("category"), cell("joint_types"));
+        for r in &table.rows {
+            keys[4].push(category.map(|i| r[i].clone()).unwrap_or_default());
+            keys[5].push(joint_types.map(|i| r[i].clone()).unwrap_or_default());
+        }
         let failed: Vec<bool> = table.rows.iter().map(|r| !r[2].is_empty()).collect();
         let parts = numbers(table, "parts");
         let segments = numbers(table, "segments");
@@ -116,24 +145,26 @@ fn pairs_frame(runs: &[Scored], keep: impl Fn(Board) -> bool) -> Result<DataFram
         .map(|s| s.to_string())
         .chain(["has_q".to_string()])
         .chain((0..PCC_THRESHOLDS).map(pcc_column));
-    let mut frame: Vec<Column> = ["dataset", "method", "flow_source"]
-        .iter()
-        .zip(keys)
-        .map(|(name, values)| Column::new((*name).into(), values))
-        .collect();
+    let mut frame: Vec<Column> =
+        KEYS.iter().zip(keys).map(|(name, values)| Column::new((*name).into(), values)).collect();
     frame.extend(names.zip(columns).map(|(name, values)| Column::new(name.into(), values)));
     DataFrame::new_infer_height(frame).map_err(table_err("per-pair results"))
 }
 
-/// Sums every numeric column per (dataset, method, flow source), in first-seen order.
+/// Sums every numeric column per `by` (key columns), in first-seen order.
 #[allow(deprecated)] // The eager aggregations: polars' lazy engine would double the build.
-fn summed(frame: &DataFrame) -> Result<DataFrame, EvalError> {
+fn summed_by(frame: &DataFrame, by: &[&str]) -> Result<DataFrame, EvalError> {
     let numeric: Vec<String> =
-        frame.get_column_names().iter().skip(3).map(|s| s.to_string()).collect();
+        frame.get_column_names().iter().skip(KEYS.len()).map(|s| s.to_string()).collect();
     frame
-        .group_by_stable(["dataset", "method", "flow_source"])
+        .group_by_stable(by.iter().copied())
         .and_then(|g| g.select(numeric).sum())
         .map_err(table_err("leaderboard sums"))
+}
+
+/// Sums per row (dataset, method, flow source, oracle).
+fn summed(frame: &DataFrame) -> Result<DataFrame, EvalError> {
+    summed_by(frame, &ROW_KEYS)
 }
 
 fn column(frame: &DataFrame, name: &str) -> Result<Vec<f64>, EvalError> {
@@ -147,10 +178,7 @@ fn ratio(num: &[f64], den: &[f64]) -> Vec<Option<f64>> {
 }
 
 fn keys(frame: &DataFrame) -> Result<Vec<Column>, EvalError> {
-    ["dataset", "method", "flow_source"]
-        .iter()
-        .map(|k| frame.column(k).cloned().map_err(table_err(k)))
-        .collect()
+    ROW_KEYS.iter().map(|k| frame.column(k).cloned().map_err(table_err(k))).collect()
 }
 
 fn counts(name: &str, values: &[f64]) -> Column {
@@ -209,6 +237,7 @@ fn seg_board(sums: &DataFrame) -> Result<DataFrame, EvalError> {
         Column::new("iou".into(), ratio(&column(sums, "iou_sum")?, &column(sums, "parts")?)),
         Column::new("rotation_deg".into(), ratio(&column(sums, "rotation_sum")?, &matched)),
         Column::new("translation".into(), ratio(&column(sums, "translation_sum")?, &matched)),
+        Column::new("matched_per_pair".into(), ratio(&matched, &scored)),
         Column::new("part_count_acc".into(), ratio(&column(sums, "parts_right")?, &scored)),
         Column::new("ri_q".into(), ratio(&column(sums, "ri_q")?, &column(sums, "has_q")?)),
         Column::new("iou_q".into(), ratio(&column(sums, "iou_q_sum")?, &column(sums, "parts_q")?)),
@@ -216,6 +245,56 @@ fn seg_board(sums: &DataFrame) -> Result<DataFrame, EvalError> {
         counts("failed", &column(sums, "failed")?),
     ]);
     DataFrame::new_infer_height(columns).map_err(table_err("segmentation leaderboard"))
+}
+
+/// The joints board from summed per-pair results: rows whose predictions carry motions.
+fn joints_board(sums: &DataFrame) -> Result<DataFrame, EvalError> {
+    let joints = column(sums, "joints")?;
+    let keep: Vec<bool> = joints.iter().map(|&j| j > 0.0).collect();
+    let mut columns = keys(sums)?;
+    columns.extend([
+        counts("joints", &joints),
+        Column::new("type_acc".into(), ratio(&column(sums, "joints_typed")?, &joints)),
+        Column::new("axis_deg".into(), ratio(&column(sums, "axis_sum")?, &column(sums, "axis_n")?)),
+        Column::new(
+            "axis_line_dist".into(),
+            ratio(&column(sums, "line_sum")?, &column(sums, "line_n")?),
+        ),
+        Column::new(
+            "state_revolute_deg".into(),
+            ratio(&column(sums, "state_rev_sum")?, &column(sums, "state_rev_n")?),
+        ),
+        Column::new(
+            "state_prismatic".into(),
+            ratio(&column(sums, "state_pri_sum")?, &column(sums, "state_pri_n")?),
+        ),
+        counts("pairs", &column(sums, "scored")?),
+        counts("failed", &column(sums, "failed")?),
+    ]);
+    let frame = DataFrame::new_infer_height(columns).map_err(table_err("joints board"))?;
+    let mask = BooleanChunked::from_slice("keep".into(), &keep);
+    frame.filter(&mask).map_err(table_err("joints board"))
+}
+
+/// Segmentation (and, where a row has one, flow) accuracy per row and `breakdown` value.
+fn breakdown_board(frame: &DataFrame, breakdown: &str) -> Result<DataFrame, EvalError> {
+    let mut by = ROW_KEYS.to_vec();
+    by.push(breakdown);
+    let sums = summed_by(frame, &by)?;
+    let scored = column(&sums, "scored")?;
+    let value = sums.column(breakdown).map_err(table_err(breakdown))?.clone();
+    let mut columns = keys(&sums)?;
+    columns.extend([
+        Column::new("breakdown".into(), vec![breakdown.trim_end_matches('s'); sums.height()]),
+        value.with_name("value".into()),
+        Column::new("epe".into(), ratio(&column(&sums, "epe")?, &column(&sums, "has_flow")?)),
+        Column::new("ri".into(), ratio(&column(&sums, "ri")?, &scored)),
+        Column::new("iou".into(), ratio(&column(&sums, "iou_sum")?, &column(&sums, "parts")?)),
+        Column::new("part_count_acc".into(), ratio(&column(&sums, "parts_right")?, &scored)),
+        counts("pairs", &scored),
+        counts("failed", &column(&sums, "failed")?),
+    ]);
+    DataFrame::new_infer_height(columns).map_err(table_err("per-category board"))
 }
 
 /// Milliseconds per pair (mean over all pairs, failed ones included) and peak memory.
@@ -243,9 +322,21 @@ impl Leaderboards {
     /// Builds the three tables from every run.
     pub fn build(runs: &[Scored]) -> Result<Self, EvalError> {
         let flow = summed(&pairs_frame(runs, |b| b != Board::Segmentation)?)?;
-        let seg = summed(&pairs_frame(runs, |b| b != Board::Flow)?)?;
+        let seg_pairs = pairs_frame(runs, |b| b != Board::Flow)?;
+        let seg = summed(&seg_pairs)?;
         let (flow, curves) = flow_board(&flow)?;
-        Ok(Self { flow, seg: seg_board(&seg)?, timings: timings(runs)?, curves })
+        let mut by_category = breakdown_board(&seg_pairs, "category")?;
+        by_category
+            .vstack_mut(&breakdown_board(&seg_pairs, "joint_types")?)
+            .map_err(table_err("per-category board"))?;
+        Ok(Self {
+            flow,
+            seg: seg_board(&seg)?,
+            joints: joints_board(&seg)?,
+            by_category,
+            timings: timings(runs)?,
+            curves,
+        })
     }
 
     /// Writes `leaderboard_flow.csv`, `leaderboard_seg.csv` and `timings.csv` into `dir`.
@@ -253,6 +344,8 @@ impl Leaderboards {
         for (name, frame) in [
             ("leaderboard_flow.csv", &mut self.flow),
             ("leaderboard_seg.csv", &mut self.seg),
+            ("joints.csv", &mut self.joints),
+            ("leaderboard_by_category.csv", &mut self.by_category),
             ("timings.csv", &mut self.timings),
         ] {
             write_csv(&dir.join(name), frame)?;

@@ -37,6 +37,8 @@ pub mod registry;
 pub mod report;
 pub mod run;
 pub mod score;
+pub mod source_hash;
 pub mod standard;
+pub mod tuning;
 
 pub use error::EvalError;

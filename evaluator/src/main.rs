@@ -6,7 +6,10 @@ use std::time::Instant;
 
 use anyhow::{Context, Result};
 use clap::Parser;
-use evaluator::datasets::{default_datasets, load_dataset, DatasetSpec};
+use evaluator::datasets::{
+    default_datasets, load_dataset, parse_user_dataset, remember_datasets, remembered_datasets,
+    validation_datasets, DatasetSpec,
+};
 use evaluator::iterations::{iteration_table, write_iterations};
 use evaluator::joints;
 use evaluator::pipeline::{evaluate, Options, Progress};
@@ -22,7 +25,8 @@ use indicatif::{ProgressBar, ProgressStyle};
   evaluator --all                                   everything (generates missing datasets)
   evaluator --methods gt,net --limit 50             two rows on the first 50 pairs
   evaluator --methods seqransac@net-flow --force    recompute one row
-  evaluator --methods net,net-iter --iterations --limit 50   Table 3 on 50 pairs
+  evaluator --dataset lamps=datasets/lamps --methods net,seqransac@net-flow   a user's dataset
+  evaluator --methods net,net-iter --iterations --limit 50   Table 4 on 50 pairs
   evaluator --list                                  the registered rows and datasets"
 )]
 struct Args {
@@ -35,6 +39,11 @@ struct Args {
     /// Only these datasets (comma-separated names, see --list).
     #[arg(long, value_delimiter = ',')]
     datasets: Vec<String>,
+    /// Also score the dataset folder PATH (any folder the generator wrote, from --assets
+    /// too) under the name NAME; repeatable. Without --all or --datasets only these are run.
+    /// Its rows stay in the boards on later runs (remembered in <reports>/user_datasets.json).
+    #[arg(long = "dataset", value_name = "NAME=PATH", value_parser = parse_user_dataset)]
+    user_datasets: Vec<DatasetSpec>,
     /// Only the first N pairs of each dataset (reports go to <reports>/limit-N/).
     #[arg(long, value_name = "N")]
     limit: Option<usize>,
@@ -54,7 +63,7 @@ struct Args {
     #[arg(long, default_value_t = 3)]
     gallery_pairs: usize,
     /// Also score net-iter after every iteration into <reports>/iterations.csv and
-    /// iterations.svg (the paper's Table 3) on the selected datasets.
+    /// iterations.svg (the paper's Table 4) on the selected datasets.
     #[arg(long)]
     iterations: bool,
     /// List the registered rows and datasets, then exit.
@@ -107,13 +116,29 @@ impl Progress for Bars {
         let how = if cached { "cached" } else { "done" };
         eprintln!("{entry} on {dataset}: {how}");
     }
+
+    fn notice(&self, message: &str) {
+        eprintln!("{message}");
+    }
 }
 
 fn run(args: Args) -> Result<()> {
     let registry = standard_registry(&args.weights).with_context(|| {
         format!("building the method registry (weights {})", args.weights.display())
     })?;
-    let specs = default_datasets();
+    let mut specs = default_datasets();
+    let limited = match args.limit {
+        Some(n) => args.reports.join(format!("limit-{n}")),
+        None => args.reports.clone(),
+    };
+    for spec in remembered_datasets(&limited).into_iter().chain(args.user_datasets.iter().cloned())
+    {
+        if specs.iter().any(|s| s.name == spec.name && s.config.is_some()) {
+            anyhow::bail!("--dataset {}: that name is a default dataset's", spec.name);
+        }
+        specs.retain(|s| s.name != spec.name);
+        specs.push(spec);
+    }
     if args.list {
         println!("rows:");
         for entry in registry.entries() {
@@ -125,24 +150,41 @@ fn run(args: Args) -> Result<()> {
         }
         return Ok(());
     }
-    if !args.all && args.methods.is_empty() && args.datasets.is_empty() {
+    if !args.all
+        && args.methods.is_empty()
+        && args.datasets.is_empty()
+        && args.user_datasets.is_empty()
+    {
         anyhow::bail!(
-            "nothing to do: pass --all, or narrow with --methods/--datasets (see --help)"
+            "nothing to do: pass --all, or narrow with --methods/--datasets/--dataset (see --help)"
         );
     }
-    let selected = args.datasets.clone();
+    let mut datasets = args.datasets.clone();
+    if datasets.is_empty() && !args.all && !args.user_datasets.is_empty() {
+        datasets = args.user_datasets.iter().map(|s| s.name.clone()).collect();
+    }
+    for spec in &args.user_datasets {
+        let dir = spec.dir(&args.datasets_root);
+        load_dataset(&spec.name, &dir, Some(1))
+            .with_context(|| format!("--dataset {}={}", spec.name, dir.display()))?;
+    }
+    let selected = datasets.clone();
     let options = Options {
-        datasets: args.datasets,
+        datasets,
         methods: args.methods,
         limit: args.limit,
         datasets_root: args.datasets_root,
         reports: args.reports,
         force: args.force,
         gallery_pairs: args.gallery_pairs,
+        validation: validation_datasets(),
     };
     let started = Instant::now();
     let bars = Bars { bar: Mutex::new(None) };
     let summary = evaluate(&registry, &specs, &options, &bars)?;
+    remember_datasets(&summary.reports, &args.user_datasets).with_context(|| {
+        format!("remembering the user datasets in {}", summary.reports.display())
+    })?;
     eprintln!(
         "{} runs ({} fresh, {} cached), {} failed pairs, {:.1} s; wrote {}/LEADERBOARD.md",
         summary.fresh + summary.cached,

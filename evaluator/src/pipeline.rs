@@ -12,9 +12,10 @@ use crate::error::EvalError;
 use crate::gallery::{write_picture, GalleryPicture};
 use crate::leaderboard::{Leaderboards, Scored};
 use crate::plots::write_pcc_plots;
-use crate::registry::{Board, Registry};
+use crate::registry::{Board, Entry, Registry};
 use crate::report::write_report;
 use crate::run::{cached_run, run_entry, FlowCache, RunOptions, RunResult};
+use crate::tuning::{cached_sweep, sweep_key, tune, Sweep};
 
 /// What to evaluate and where.
 #[derive(Debug, Clone)]
@@ -33,6 +34,9 @@ pub struct Options {
     pub force: bool,
     /// Pairs per dataset shown in the gallery (the first ones of the file).
     pub gallery_pairs: usize,
+    /// The validation sets tuned rows are tuned on (made when missing; never a test set):
+    /// [`crate::datasets::validation_datasets`] for the benchmark.
+    pub validation: Vec<DatasetSpec>,
 }
 
 /// Progress hooks for the binary's bars.
@@ -45,6 +49,10 @@ pub trait Progress: Sync {
     fn tick(&self);
     /// The row is done (`cached`: reused from the runs folder).
     fn finish(&self, entry: &str, dataset: &str, cached: bool);
+    /// Something the user should know (a dataset regenerated, and why).
+    fn notice(&self, message: &str) {
+        let _ = message;
+    }
 }
 
 /// Progress hooks that show nothing (tests, benches, library callers).
@@ -70,6 +78,8 @@ pub struct Summary {
     pub failed: usize,
     /// Where the reports were written.
     pub reports: PathBuf,
+    /// The sweeps of the tuned rows in the tables.
+    pub sweeps: Vec<Sweep>,
 }
 
 /// Runs the evaluation described by `options` over `registry`'s rows and `specs`' datasets.
@@ -107,15 +117,22 @@ pub fn evaluate(
         let chosen = selected_specs.iter().any(|s| s.name == spec.name);
         let dir = spec.dir(&options.datasets_root);
         if chosen {
-            ensure_dataset(spec, &options.datasets_root, |done, total| {
-                progress.generating(&spec.name, done, total)
-            })?;
+            ensure_dataset(
+                spec,
+                &options.datasets_root,
+                &|m| progress.notice(m),
+                |done, total| progress.generating(&spec.name, done, total),
+            )?;
         } else if !dir.join(pairs::dataset::MANIFEST_FILE).exists() {
             continue;
         }
         loaded.push((load_dataset(&spec.name, &dir, options.limit)?, chosen));
     }
     let flows = FlowCache::default();
+    let any_chosen = loaded.iter().any(|(_, chosen)| *chosen);
+    let (entries, sweeps) =
+        resolve_tuning(entries, &selected, any_chosen, options, &flows, progress)?;
+    let entries = entries.as_slice();
     let mut results: Vec<(usize, usize, RunResult)> = Vec::new();
     let (mut fresh, mut cached) = (0, 0);
     for (d, (dataset, chosen)) in loaded.iter().enumerate() {
@@ -162,8 +179,85 @@ pub fn evaluate(
     write_pcc_plots(&reports, &boards.curves)?;
     let datasets: Vec<&LoadedDataset> = loaded.iter().map(|(d, _)| d).collect();
     let gallery = write_gallery(&reports, options.gallery_pairs, &datasets, &scored)?;
-    write_report(&reports, &boards, &gallery)?;
-    Ok(Summary { boards, fresh, cached, failed, reports })
+    let sweeps: Vec<Sweep> =
+        sweeps.into_iter().filter(|s| scored.iter().any(|r| r.entry.name == s.row)).collect();
+    write_report(&reports, &boards, &gallery, &sweeps)?;
+    Ok(Summary { boards, fresh, cached, failed, reports, sweeps })
+}
+
+/// The rows with every tuned row's chosen parameters in place: a selected tuned row is tuned
+/// (or its cached sweep reused) on the validation sets, generated when missing; an unselected
+/// one takes its cached sweep when there is one, else it keeps an untuned fingerprint that no
+/// cached run matches (so it stays out of the tables). The sweeps used are returned beside.
+fn resolve_tuning(
+    entries: &[Entry],
+    selected: &[Entry],
+    any_chosen: bool,
+    options: &Options,
+    flows: &FlowCache,
+    progress: &dyn Progress,
+) -> Result<(Vec<Entry>, Vec<Sweep>), EvalError> {
+    let tuning_reports = &options.reports;
+    let needs = |e: &Entry| any_chosen && selected.iter().any(|s| s.name == e.name);
+    let must_tune = entries.iter().any(|e| e.grid.is_some() && needs(e));
+    let mut validation = Vec::new();
+    for spec in &options.validation {
+        let dir = spec.dir(&options.datasets_root);
+        if must_tune {
+            ensure_dataset(spec, &options.datasets_root, &|m| progress.notice(m), |d, t| {
+                progress.generating(&spec.name, d, t)
+            })?;
+        } else if !dir.join(pairs::dataset::MANIFEST_FILE).exists() {
+            continue;
+        }
+        validation.push(load_dataset(&spec.name, &dir, None)?);
+    }
+    let validation: Vec<&LoadedDataset> = validation.iter().collect();
+    let mut resolved = Vec::with_capacity(entries.len());
+    let mut sweeps = Vec::new();
+    for entry in entries {
+        let Some(grid) = &entry.grid else {
+            resolved.push(entry.clone());
+            continue;
+        };
+        let key = sweep_key(&entry.name, grid, &entry.fingerprint, &validation);
+        let sweep = if needs(entry) {
+            progress.start(&format!("tuning {}", entry.name), "validation", grid_size(grid));
+            let sweep = tune(
+                &entry.name,
+                grid,
+                &entry.fingerprint,
+                &validation,
+                flows,
+                tuning_reports,
+                &|_| progress.tick(),
+            )?;
+            progress.finish(&format!("tuning {}", entry.name), "validation", false);
+            Some(sweep)
+        } else if validation.is_empty() {
+            None
+        } else {
+            cached_sweep(tuning_reports, &entry.name, &key)
+        };
+        let mut entry = entry.clone();
+        match sweep {
+            Some(sweep) => {
+                let (runner, fingerprint) = (grid.build)(&sweep.candidates[sweep.chosen].values);
+                entry.fingerprint = format!("{fingerprint} on {}", entry.fingerprint);
+                entry.runner = runner;
+                sweeps.push(sweep);
+            }
+            None => entry.fingerprint = format!("untuned {}", entry.fingerprint),
+        }
+        entry.grid = None;
+        resolved.push(entry);
+    }
+    Ok((resolved, sweeps))
+}
+
+/// Candidates of a grid before widening.
+fn grid_size(grid: &crate::tuning::Grid) -> u64 {
+    grid.axes.iter().map(|a| a.values.len() as u64).product()
 }
 
 /// One picture per gallery pair and dataset, with a panel per segmentation row.

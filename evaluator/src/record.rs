@@ -16,6 +16,9 @@ pub struct PairRecord {
     pub pair: String,
     /// The pair's object category.
     pub category: String,
+    /// The kinds of the pair's true joints, sorted and joined by `+` (`prismatic+revolute`),
+    /// or `none`: the per-joint-type breakdown of `leaderboard_by_category.csv`.
+    pub joint_types: String,
     /// Milliseconds the method took on the pair (not part of the leaderboards).
     pub ms: f64,
     /// The scores, or why the pair failed.
@@ -24,7 +27,7 @@ pub struct PairRecord {
 
 /// Columns before the PCC curve; the curve follows as `pcc_000` .. `pcc_250` (threshold in
 /// thousandths).
-const FIXED: [&str; 17] = [
+const FIXED: [&str; 28] = [
     "pair",
     "category",
     "failed",
@@ -42,7 +45,21 @@ const FIXED: [&str; 17] = [
     "translation_sum",
     "rotation_max",
     "has_flow",
+    "joint_types",
+    "joints",
+    "joints_typed",
+    "axis_sum",
+    "axis_n",
+    "line_sum",
+    "line_n",
+    "state_rev_sum",
+    "state_rev_n",
+    "state_pri_sum",
+    "state_pri_n",
 ];
+
+/// Index of the `joint_types` column (filled for failed pairs too).
+const JOINT_TYPES: usize = 17;
 
 /// The header of a runs file.
 pub fn header() -> Vec<String> {
@@ -72,6 +89,7 @@ impl PairRecord {
                 row.push(reason.clone());
                 row.push(num(self.ms));
                 row.resize(FIXED.len() + PCC_THRESHOLDS, String::new());
+                row[JOINT_TYPES] = self.joint_types.clone();
             }
             Ok(s) => {
                 let sum = |v: &[f64]| v.iter().sum::<f64>();
@@ -96,7 +114,9 @@ impl PairRecord {
                     num(sum(&s.translation)),
                     opt(max),
                     u8::from(s.flow.is_some()).to_string(),
+                    self.joint_types.clone(),
                 ]);
+                row.extend(joint_cells(&s.joints));
                 match &s.flow {
                     Some(f) => row.extend(f.pcc.iter().map(|&v| num(v))),
                     None => row.resize(FIXED.len() + PCC_THRESHOLDS, String::new()),
@@ -104,6 +124,37 @@ impl PairRecord {
             }
         }
         row
+    }
+}
+
+/// The joint columns of a scored pair: joints, joints typed right, then sum and count of
+/// the axis errors, line distances, revolute and prismatic state errors.
+fn joint_cells(joints: &[pairs::metrics::JointError]) -> Vec<String> {
+    let sum_count = |values: Vec<f64>| [num(values.iter().sum()), values.len().to_string()];
+    let revolute = |j: &&pairs::metrics::JointError| j.truth == pairs::JointKind::Revolute;
+    let mut cells = vec![
+        joints.len().to_string(),
+        joints.iter().filter(|j| j.type_correct()).count().to_string(),
+    ];
+    cells.extend(sum_count(joints.iter().filter_map(|j| j.axis_deg).collect()));
+    cells.extend(sum_count(joints.iter().filter_map(|j| j.line_distance).collect()));
+    cells.extend(sum_count(joints.iter().filter(revolute).filter_map(|j| j.state_error).collect()));
+    cells.extend(sum_count(
+        joints.iter().filter(|j| !revolute(j)).filter_map(|j| j.state_error).collect(),
+    ));
+    cells
+}
+
+/// The `joint_types` cell of a pair: its true joints' kinds, sorted, deduplicated and joined
+/// by `+`, or `none`.
+pub fn joint_types(truth: &pairs::GroundTruth) -> String {
+    let mut kinds: Vec<&str> = truth.joints.iter().map(|j| j.kind.as_str()).collect();
+    kinds.sort_unstable();
+    kinds.dedup();
+    if kinds.is_empty() {
+        "none".into()
+    } else {
+        kinds.join("+")
     }
 }
 

@@ -8,6 +8,7 @@ use std::sync::Arc;
 use pairs::{Method, Segmenter};
 
 use crate::error::EvalError;
+use crate::tuning::Grid;
 
 /// Where a segmenter's input flow comes from.
 #[derive(Clone)]
@@ -71,8 +72,14 @@ pub struct Entry {
     /// Which leaderboards list it.
     pub board: Board,
     /// Identifies the method's code (a hash of its crates' source), parameters and weights:
-    /// cached results made with another fingerprint are recomputed.
+    /// cached results made with another fingerprint are recomputed. For a tuned row, what
+    /// identifies its flow source; the chosen parameters are added once tuned.
     pub fingerprint: String,
+    /// The parameters cross-validated for this row on the validation sets ([`crate::tuning`]);
+    /// `runner` then holds the grid's first point until the row is tuned.
+    pub grid: Option<Grid>,
+    /// Whether the row reads the ground truth (the `gt` oracle and rows on `gt-flow`).
+    pub oracle: bool,
 }
 
 impl Entry {
@@ -106,12 +113,14 @@ impl Registry {
 
     /// Adds the `gt` oracle row.
     pub fn oracle(&mut self) -> &mut Self {
-        let fingerprint = "gt".into();
+        let fingerprint = format!("gt {}", env!("SOURCE_HASH_SCORING"));
         self.push(Entry {
             name: "gt".into(),
             runner: Runner::Oracle,
             board: Board::Both,
             fingerprint,
+            grid: None,
+            oracle: true,
         })
     }
 
@@ -124,7 +133,8 @@ impl Registry {
     ) -> &mut Self {
         let name = method.name().to_owned();
         let runner = Runner::Method(method);
-        self.push(Entry { name, runner, board, fingerprint: fingerprint.into() })
+        let fingerprint = fingerprint.into();
+        self.push(Entry { name, runner, board, fingerprint, grid: None, oracle: false })
     }
 
     /// Adds `segmenter` on `flow` as `<segmenter>@<flow>` (segmentation board only: the flow
@@ -140,8 +150,34 @@ impl Registry {
         let name =
             name.map_or_else(|| format!("{}@{}", segmenter.name(), flow.name()), str::to_owned);
         let board = if name.contains('@') { Board::Segmentation } else { Board::Both };
+        let oracle = matches!(flow, FlowSource::GroundTruth);
         let runner = Runner::Segmenter { segmenter, flow };
-        self.push(Entry { name, runner, board, fingerprint: fingerprint.into() })
+        let fingerprint = fingerprint.into();
+        self.push(Entry { name, runner, board, fingerprint, grid: None, oracle })
+    }
+
+    /// Adds a row whose parameters are cross-validated over `grid` before it runs: `name`
+    /// (`seqransac@net-flow`, or a whole method's name), on `board`, reading the truth when
+    /// `oracle`. `source_fingerprint` identifies its input (the flow source's fingerprint and
+    /// the code); the chosen parameters join it once the row is tuned.
+    pub fn tuned(
+        &mut self,
+        name: &str,
+        grid: Grid,
+        board: Board,
+        source_fingerprint: &str,
+        oracle: bool,
+    ) -> &mut Self {
+        let first: Vec<f64> = grid.axes.iter().map(|a| a.values[0]).collect();
+        let (runner, _) = (grid.build)(&first);
+        self.push(Entry {
+            name: name.to_owned(),
+            runner,
+            board,
+            fingerprint: source_fingerprint.to_owned(),
+            grid: Some(grid),
+            oracle,
+        })
     }
 
     fn push(&mut self, entry: Entry) -> &mut Self {

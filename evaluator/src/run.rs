@@ -20,12 +20,12 @@ use crate::datasets::LoadedDataset;
 use crate::error::EvalError;
 use crate::files::replace_file;
 use crate::memory;
-use crate::record::{read_records, write_records, PairRecord, RunTable};
+use crate::record::{joint_types, read_records, write_records, PairRecord, RunTable};
 use crate::registry::{method_flow_name, Entry, FlowSource, Runner};
 use crate::score::score_pair;
 
 /// Version of the runs files; bump it when scoring changes so cached runs are recomputed.
-pub const RUNS_VERSION: u32 = 2;
+pub const RUNS_VERSION: u32 = 3;
 
 /// What is stored beside a runs file.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -54,7 +54,7 @@ pub struct RunResult {
 }
 
 /// Per pair of a dataset, a flow source's flow or why it has none.
-type SourceFlows = Arc<Vec<Result<Vec<Vector3>, String>>>;
+pub type SourceFlows = Arc<Vec<Result<Vec<Vector3>, String>>>;
 
 /// Flows of flow sources, computed once per source and dataset and shared by every
 /// segmenter that runs on them.
@@ -64,7 +64,8 @@ pub struct FlowCache {
 }
 
 impl FlowCache {
-    fn get(&self, source: &FlowSource, dataset: &LoadedDataset) -> SourceFlows {
+    /// The flows of `source` on every pair of `dataset`, computed on first use.
+    pub fn get(&self, source: &FlowSource, dataset: &LoadedDataset) -> SourceFlows {
         let key = (source.name(), dataset.name.clone());
         if let Some(found) = self.flows.lock().unwrap_or_else(|e| e.into_inner()).get(&key) {
             return found.clone();
@@ -110,13 +111,14 @@ fn guarded<T>(f: impl FnOnce() -> Result<T, String>) -> Result<T, String> {
     }
 }
 
-/// The prediction of `entry` for pair `index` of `dataset`.
-fn predict(
-    entry: &Entry,
+/// The prediction of `runner` for `pair` (`flow`: its flow source's flow on the pair, for a
+/// segmenter), with panics and errors turned into the reason the pair failed.
+pub fn predict_pair(
+    runner: &Runner,
     pair: &Pair,
     flow: Option<&Result<Vec<Vector3>, String>>,
 ) -> Result<Prediction, String> {
-    match &entry.runner {
+    match runner {
         Runner::Oracle => {
             let truth = pair.truth();
             Ok(Prediction {
@@ -208,7 +210,7 @@ pub fn run_entry(
         .map(|(i, pair)| {
             let flow = source_flows.as_ref().map(|f| &f[i]);
             let started = Instant::now();
-            let prediction = predict(entry, pair, flow);
+            let prediction = predict_pair(&entry.runner, pair, flow);
             let ms = started.elapsed().as_secs_f64() * 1e3;
             let own_flow = match &prediction {
                 Ok(p) => p.flow.clone().ok_or_else(|| format!("{} reports no flow", entry.name)),
@@ -229,6 +231,7 @@ pub fn run_entry(
             let record = PairRecord {
                 pair: pair.id().to_owned(),
                 category: pair.provenance().category.clone(),
+                joint_types: joint_types(pair.truth()),
                 ms,
                 outcome,
             };

@@ -2,8 +2,8 @@
 //! ground truth with `pairs::metrics` (flow, segmentation of P and Q, matched motions).
 
 use pairs::metrics::{
-    end_point_errors, matched_iou, motion_errors, pcc, pcc_at, pcc_auc, rand_index, segment_count,
-    MetricError, PCC_THRESHOLDS,
+    end_point_errors, joint_errors, matched_iou, motion_errors, pcc, pcc_at, pcc_auc, rand_index,
+    segment_count, JointError, MetricError, PCC_THRESHOLDS,
 };
 use pairs::{GroundTruth, PairInput, Prediction};
 
@@ -121,6 +121,9 @@ pub struct PairScore {
     pub rotation_deg: Vec<f64>,
     /// Translation errors of the matched parts' motions.
     pub translation: Vec<f64>,
+    /// Every ground-truth joint scored against the joint estimated from the matched
+    /// segment's motion (`pairs::metrics::joints`); empty when the prediction has no motions.
+    pub joints: Vec<JointError>,
 }
 
 /// Scores a checked prediction against the ground truth.
@@ -155,6 +158,18 @@ pub fn score_pair(
         })
     };
     let motion = motion_errors(&matching, &prediction.motions, &truth.motions);
+    let joints = if prediction.motions.is_empty() {
+        Vec::new()
+    } else {
+        joint_errors(
+            &input.p.points,
+            &prediction.segments_p,
+            &prediction.motions,
+            &matching,
+            &truth.joints,
+            input.p.normalisation.scale,
+        )
+    };
     Ok(PairScore {
         flow,
         p,
@@ -163,6 +178,7 @@ pub fn score_pair(
         segments: segment_count(&prediction.segments_p) as u32,
         rotation_deg: motion.rotation_deg,
         translation: motion.translation,
+        joints,
     })
 }
 

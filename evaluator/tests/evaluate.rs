@@ -51,7 +51,7 @@ fn spec() -> DatasetSpec {
         min_part_points: 4,
         ..GeneratorConfig::default()
     };
-    DatasetSpec { name: "tiny".into(), config }
+    DatasetSpec::generated("tiny", config)
 }
 
 fn registry(one_part_fingerprint: &str) -> Registry {
@@ -80,6 +80,7 @@ fn run_narrowed(
         reports: root.join("reports"),
         force: false,
         gallery_pairs: 1,
+        validation: Vec::new(),
     };
     evaluate(registry, &[spec()], &options, &NoProgress).expect("the evaluation runs")
 }
@@ -162,9 +163,112 @@ fn unknown_names_are_refused_with_the_known_ones() {
         reports: dir.path().join("reports"),
         force: false,
         gallery_pairs: 0,
+        validation: Vec::new(),
     };
     let err = evaluate(&registry("x"), &[spec()], &options, &NoProgress).err().expect("refused");
     assert!(err.to_string().contains("unknown dataset \"nope\"; known: tiny"), "{err}");
     let err = registry("x").select(&["seqransac@nowhere".into()]).err().expect("refused");
     assert!(err.to_string().contains("known: gt, one-part@gt-flow, broken"), "{err}");
+}
+
+/// Progress hooks that keep the notices.
+#[derive(Default)]
+struct Notices(std::sync::Mutex<Vec<String>>);
+
+impl evaluator::pipeline::Progress for Notices {
+    fn generating(&self, _: &str, _: u64, _: u64) {}
+    fn start(&self, _: &str, _: &str, _: u64) {}
+    fn tick(&self) {}
+    fn finish(&self, _: &str, _: &str, _: bool) {}
+    fn notice(&self, message: &str) {
+        self.0.lock().expect("not poisoned").push(message.to_owned());
+    }
+}
+
+fn options(root: &Path) -> Options {
+    Options {
+        datasets: Vec::new(),
+        methods: Vec::new(),
+        limit: None,
+        datasets_root: root.join("datasets"),
+        reports: root.join("reports"),
+        force: false,
+        gallery_pairs: 0,
+        validation: Vec::new(),
+    }
+}
+
+#[test]
+fn a_stale_default_dataset_is_regenerated_and_its_rows_recomputed() {
+    let dir = tempfile::tempdir().expect("a temporary folder");
+    let registry = registry("one-part v1");
+    let first = evaluate(&registry, &[spec()], &options(dir.path()), &NoProgress).expect("runs");
+    assert_eq!(first.fresh, 3);
+    // The spec now asks for another seed: the folder on disk no longer matches it.
+    let mut changed = spec();
+    changed.config.as_mut().expect("a generated spec").seed = 1;
+    let notices = Notices::default();
+    let second =
+        evaluate(&registry, &[changed.clone()], &options(dir.path()), &notices).expect("runs");
+    let said = notices.0.lock().expect("not poisoned").clone();
+    assert_eq!(said.len(), 1, "{said:?}");
+    assert!(
+        said[0].contains("regenerating tiny") && said[0].contains("config differs"),
+        "{said:?}"
+    );
+    assert_eq!((second.fresh, second.cached), (3, 0), "new data recomputes every row");
+    let manifest =
+        pairs::dataset::Manifest::read(&dir.path().join("datasets/tiny")).expect("reads");
+    assert_eq!(manifest.origin.seed, 1);
+    // Matching again: nothing regenerated, everything cached.
+    let notices = Notices::default();
+    let third = evaluate(&registry, &[changed], &options(dir.path()), &notices).expect("runs");
+    assert!(notices.0.lock().expect("not poisoned").is_empty());
+    assert_eq!((third.fresh, third.cached), (0, 3));
+}
+
+#[test]
+fn a_user_dataset_is_scored_under_its_name_and_bad_folders_are_refused() {
+    let dir = tempfile::tempdir().expect("a temporary folder");
+    let made = dir.path().join("mine");
+    let config = spec().config.expect("a generated spec");
+    generator::generate::generate_dataset(&config, &made, false, None, |_| {}).expect("generated");
+    let registry = registry("one-part v1");
+    let user = DatasetSpec::user("lamps", &made);
+    let summary = evaluate(&registry, &[user], &options(dir.path()), &NoProgress).expect("runs");
+    assert_eq!(summary.fresh, 3);
+    let reports = dir.path().join("reports");
+    let seg = read(&reports.join("leaderboard_seg.csv"));
+    assert!(seg.lines().any(|l| l.starts_with("lamps,gt,gt,true,1.0000,1.0000")), "{seg}");
+    let board = read(&reports.join("LEADERBOARD.md"));
+
+    // Not a dataset: the error names the folder; the reports are left as they were.
+    let empty = dir.path().join("empty");
+    std::fs::create_dir_all(&empty).expect("made");
+    let err = evaluate(
+        &registry,
+        &[DatasetSpec::user("nothing", &empty)],
+        &options(dir.path()),
+        &NoProgress,
+    )
+    .err()
+    .expect("refused");
+    assert!(err.to_string().contains("nothing") && err.to_string().contains("empty"), "{err}");
+    // A corrupt pair file: the checksum check names the file.
+    let broken = dir.path().join("broken");
+    generator::generate::generate_dataset(&config, &broken, false, None, |_| {})
+        .expect("generated");
+    let pairs_file = broken.join(pairs::dataset::PAIRS_FILE);
+    let bytes = std::fs::read(&pairs_file).expect("read");
+    std::fs::write(&pairs_file, &bytes[..bytes.len() / 2]).expect("truncated");
+    let err = evaluate(
+        &registry,
+        &[DatasetSpec::user("broken", &broken)],
+        &options(dir.path()),
+        &NoProgress,
+    )
+    .err()
+    .expect("refused");
+    assert!(err.to_string().contains("broken") && err.to_string().contains("pairs.mcap"), "{err}");
+    assert_eq!(read(&reports.join("LEADERBOARD.md")), board, "failed runs leave the reports alone");
 }

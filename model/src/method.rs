@@ -48,7 +48,7 @@ impl NetworkMethod {
     }
 
     /// The whole record of the procedure on a pair: every pass's prediction, so that a
-    /// caller can score each iteration (the paper's Table 3).
+    /// caller can score each iteration (the paper's Table 4).
     pub fn infer(&self, input: &PairInput) -> Result<Inference, MethodError> {
         self.net()
             .infer(input, &self.params)

@@ -25,8 +25,9 @@ use crate::geometry::{moved_points, InputError, Neighbours};
 use crate::labels::{absorb_small_segments, reassign_by_motion};
 use crate::predict::run_segmenter;
 
-/// Parameters of [`segment_jlinkage`]; defaults chosen on the validation split
-/// (`examples/sweep.rs`, `reports/baselines_sweep.csv`).
+/// Parameters of [`segment_jlinkage`]; defaults chosen on the validation split's true flow
+/// (`examples/sweep.rs`, `reports/baselines_sweep.csv`). The evaluator does not use them as
+/// they are: it cross-validates the swept fields per flow source (`reports/tuning/`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct JLinkageParams {
     /// Largest residual (Q's normalised units) for a hypothesis to explain a point.

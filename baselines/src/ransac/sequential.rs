@@ -37,8 +37,9 @@ use crate::geometry::{
 use crate::labels::reassign_by_motion;
 use crate::predict::run_segmenter;
 
-/// Parameters of [`segment_ransac`]; defaults chosen on the validation split
-/// (`examples/sweep.rs`, `reports/baselines_sweep.csv`).
+/// Parameters of [`segment_ransac`]; defaults chosen on the validation split's true flow
+/// (`examples/sweep.rs`, `reports/baselines_sweep.csv`). The evaluator does not use them as
+/// they are: it cross-validates the swept fields per flow source (`reports/tuning/`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SeqRansacParams {
     /// Largest residual (Q's normalised units) of an inlier. Default 0.02.

@@ -37,8 +37,9 @@ use crate::geometry::{
 use crate::labels::{absorb_small_segments, fill_from_nearest, reassign_by_motion};
 use crate::predict::run_segmenter;
 
-/// Parameters of [`segment_spectral`]; defaults chosen on the validation split
-/// (`examples/sweep.rs`, `reports/baselines_sweep.csv`).
+/// Parameters of [`segment_spectral`]; defaults chosen on the validation split's true flow
+/// (`examples/sweep.rs`, `reports/baselines_sweep.csv`). The evaluator does not use them as
+/// they are: it cross-validates the swept fields per flow source (`reports/tuning/`).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SpectralParams {
     /// Scale (Q's normalised units) of the change of a pair's distance. Default 0.01.

@@ -1,13 +1,15 @@
 //! Metrics shared by the evaluator and the model's trainer (docs/METRICS.md gives each
 //! formula and convention): flow errors ([`flow`]), segmentation scores
-//! ([`segmentation`]) and the errors of matched parts' motions ([`motion`]). Every function
-//! is pure and checks its inputs' lengths.
+//! ([`segmentation`]), the errors of matched parts' motions ([`motion`]) and of the joints
+//! estimated from them ([`joints`]). Every function is pure and checks its inputs' lengths.
 
 pub mod flow;
+pub mod joints;
 pub mod motion;
 pub mod segmentation;
 
 pub use flow::{end_point_errors, epe, pcc, pcc_at, pcc_auc, PCC_STEP, PCC_THRESHOLDS};
+pub use joints::{joint_errors, line_to_line_distance, JointError};
 pub use motion::{motion_errors, segment_count, MotionErrors};
 pub use segmentation::{matched_iou, max_assignment, rand_index, PartMatching};
 
