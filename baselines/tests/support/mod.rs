@@ -1,13 +1,22 @@
 //! Test pairs shared by the integration tests: the synthetic hinge with an exact, a noisy
-//! or a corrupted flow, and degenerate inputs.
+//! or a corrupted flow, a planted two-part "lamp" with distinctive geometry, degenerate
+//! inputs with the error each must give, and checks of predictions and errors.
 
 #![allow(dead_code)]
 
-use pairs::math::{Point3, Real, Vector3};
-use pairs::metrics::matched_iou;
+use baselines::descriptors::FpfhError;
+use baselines::geometry::InputError;
+use baselines::jlinkage::JLinkageError;
+use baselines::ransac::SeqRansacError;
+use baselines::registration::{EdError, IcpError, NearestError, NrrError};
+use baselines::spectral::SpectralError;
+use pairs::cloud::Cloud;
+use pairs::joints::{JointKind, JointTruth};
+use pairs::math::{Isometry3, Point3, Real, Vector3};
+use pairs::metrics::{epe, matched_iou};
 use pairs::synthetic::hinge_pair;
-use pairs::transform::rotation_error_deg;
-use pairs::{Pair, PairInput, Prediction};
+use pairs::transform::{rotation_about, rotation_error_deg, Similarity};
+use pairs::{GroundTruth, MethodError, Pair, PairInput, PairKind, Prediction, Provenance};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -15,6 +24,102 @@ use rand_chacha::ChaCha8Rng;
 /// part turned by 0.8 rad.
 pub fn hinge() -> Pair {
     hinge_pair("hinge", 12, 0.8)
+}
+
+/// Points on the surface of the axis-aligned box `lo..hi`: the boundary nodes of a grid of
+/// spacing about `step`.
+pub fn box_surface(lo: Point3, hi: Point3, step: Real) -> Vec<Point3> {
+    let cells = |a: Real, b: Real| (((b - a) / step).round() as usize).max(1);
+    let n = [cells(lo.x, hi.x), cells(lo.y, hi.y), cells(lo.z, hi.z)];
+    let at = |axis: usize, i: usize| lo[axis] + (hi[axis] - lo[axis]) * i as Real / n[axis] as Real;
+    let mut points = Vec::new();
+    for i in 0..=n[0] {
+        for j in 0..=n[1] {
+            for k in 0..=n[2] {
+                if i == 0 || i == n[0] || j == 0 || j == n[1] || k == 0 || k == n[2] {
+                    points.push(Point3::new(at(0, i), at(1, j), at(2, k)));
+                }
+            }
+        }
+    }
+    points
+}
+
+/// A two-part pair built like `pairs::synthetic::hinge_pair`: part 0 (`base`) stays, part 1
+/// (`moving`) turns by `angle` about `axis` through `pivot` (object units); Q holds the same
+/// samples as P in the same order, and each cloud is normalised on its own.
+pub fn two_part_pair(
+    id: &str,
+    base: &[Point3],
+    moving: &[Point3],
+    pivot: Point3,
+    axis: Vector3,
+    angle: Real,
+) -> Pair {
+    let hinge = rotation_about(&pivot, &axis, angle);
+    let parts: Vec<u8> = [(0, base.len()), (1, moving.len())]
+        .into_iter()
+        .flat_map(|(part, n)| std::iter::repeat_n(part, n))
+        .collect();
+    let motions_obj = [Isometry3::identity(), hinge];
+    let object_p: Vec<Point3> = base.iter().chain(moving).copied().collect();
+    let object_q: Vec<Point3> =
+        object_p.iter().zip(&parts).map(|(x, &k)| motions_obj[usize::from(k)] * x).collect();
+    let p = Cloud::normalise(&object_p).expect("the parts span a box");
+    let q = Cloud::normalise(&object_q).expect("the parts span a box");
+    let motions: Vec<Similarity> = motions_obj
+        .iter()
+        .map(|m| Similarity::between_normalised(m, &p.normalisation, &q.normalisation))
+        .collect();
+    let flow =
+        p.points.iter().zip(&parts).map(|(x, &k)| motions[usize::from(k)].apply(x) - x).collect();
+    let n = object_p.len();
+    let joint = JointTruth {
+        part: 1,
+        kind: JointKind::Revolute,
+        axis_p: axis.normalize(),
+        pivot_p: p.normalisation.apply(&pivot),
+        axis_q: axis.normalize(),
+        pivot_q: q.normalisation.apply(&pivot),
+        value_p: 0.0,
+        value_q: angle,
+    };
+    let truth = GroundTruth {
+        part_p: parts.clone(),
+        part_q: parts,
+        motions,
+        flow,
+        corr_mask: vec![true; n],
+        corr_index: (0..n as i32).collect(),
+        joints: vec![joint],
+    };
+    let provenance = Provenance {
+        category: "lamp".into(),
+        object_id: 0,
+        articulation_p: 0,
+        articulation_q: 1,
+        seed: 0,
+        generator_version: "test".into(),
+    };
+    Pair::new(PairInput { id: id.into(), kind: PairKind::Sf2f, p, q }, truth, provenance)
+        .expect("the planted pair satisfies every invariant by construction")
+}
+
+/// A planted articulated "desk lamp" (800 points): a 1 x 0.6 x 0.3 box base with an upright
+/// 0.2 x 0.2 x 0.86 arm standing off-centre on it, the arm turned by `angle` about `axis`
+/// through the foot of the arm. Unlike the hinge's two flat, nearly interchangeable squares,
+/// nothing in this shape is symmetric: edges and corners give descriptors to match and
+/// closest points only one way to fit.
+pub fn lamp(axis: Vector3, angle: Real) -> Pair {
+    let base = box_surface(Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 0.6, 0.3), 0.06);
+    let arm = box_surface(Point3::new(0.75, 0.2, 0.34), Point3::new(0.95, 0.4, 1.2), 0.06);
+    two_part_pair("lamp", &base, &arm, Point3::new(0.85, 0.3, 0.34), axis, angle)
+}
+
+/// EPE of a flow method's prediction against the pair's true flow.
+pub fn epe_to_truth(pair: &Pair, prediction: &Prediction) -> f64 {
+    let flow = prediction.flow.as_ref().expect("a flow method reports its flow");
+    epe(flow, &pair.truth().flow).expect("one finite vector per point of P")
 }
 
 /// A standard normal sample (Box-Muller), so the tests need no distribution crate.
@@ -65,10 +170,77 @@ pub fn max_rotation_error(prediction: &Prediction, pair: &Pair) -> Real {
         .fold(0.0, Real::max)
 }
 
-/// Degenerate inputs with a flow each: every method must return a valid prediction or an
-/// error on them, never panic or NaN. Names say which.
+/// The input error that a method (which sees P and Q only, `with_flow` false) or a segmenter
+/// (`with_flow` true) must give on the degenerate case `case` of [`degenerate_inputs`];
+/// `None` where it must predict.
+pub fn expected_input_error(case: &str, with_flow: bool) -> Option<InputError> {
+    let points = base_input().p.len();
+    match case {
+        "collinear" | "zero flow" | "three points" | "repeated point" => None,
+        "two points" => Some(InputError::TooFewPoints { cloud: "P", points: 2 }),
+        "empty" => Some(InputError::TooFewPoints { cloud: "P", points: 0 }),
+        "short flow" => with_flow.then_some(InputError::FlowLength { flow: 3, points }),
+        "nan flow" => with_flow.then_some(InputError::NotFinite { what: "flow", index: 3 }),
+        "nan point" => Some(InputError::NotFinite { what: "P", index: 5 }),
+        other => panic!("no expectation for degenerate case {other:?}"),
+    }
+}
+
+/// The baseline's input error inside `error`, whichever baseline's error type wraps it.
+pub fn input_error(error: &MethodError) -> Option<&InputError> {
+    let source = error.source.as_ref();
+    macro_rules! unwrap_input {
+        ($($kind:ident),*) => {$(
+            if let Some($kind::Input(inner)) = source.downcast_ref::<$kind>() {
+                return Some(inner);
+            }
+        )*};
+    }
+    unwrap_input!(
+        NrrError,
+        NearestError,
+        IcpError,
+        EdError,
+        FpfhError,
+        SeqRansacError,
+        SpectralError,
+        JLinkageError
+    );
+    None
+}
+
+/// Checks `result` of `method` on the degenerate `input`: a valid prediction where
+/// `expected` is `None`, else exactly that input error, wrapped with the method's name and
+/// the pair's id.
+pub fn assert_outcome(
+    name: &str,
+    method: &str,
+    input: &PairInput,
+    result: Result<Prediction, MethodError>,
+    expected: Option<InputError>,
+) {
+    match (result, expected) {
+        (Ok(prediction), None) => assert_valid(name, input, &prediction),
+        (Ok(_), Some(expected)) => panic!("{name}: predicted, but {expected:?} was expected"),
+        (Err(e), None) => panic!("{name}: must predict, but failed: {e}"),
+        (Err(e), Some(expected)) => {
+            assert_eq!((e.method.as_str(), e.pair.as_str()), (method, input.id.as_str()), "{name}");
+            assert_eq!(input_error(&e), Some(&expected), "{name}: {e}");
+            let message = format!("method {method} failed on pair {}: {expected}", input.id);
+            assert_eq!(e.to_string(), message, "{name}");
+        }
+    }
+}
+
+/// The hinge input that the degenerate cases start from (32 points).
+fn base_input() -> PairInput {
+    hinge_pair("degenerate", 4, 0.5).input().clone()
+}
+
+/// Degenerate inputs with a flow each: every method must return a valid prediction or the
+/// error of [`expected_input_error`] on them, never panic or NaN. Names say which.
 pub fn degenerate_inputs() -> Vec<(&'static str, PairInput, Vec<Vector3>)> {
-    let base = hinge_pair("degenerate", 4, 0.5).input().clone();
+    let base = base_input();
     let with_points = |points: Vec<Point3>, q: Vec<Point3>| {
         let mut input = base.clone();
         input.p.points = points;
