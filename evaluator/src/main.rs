@@ -131,8 +131,13 @@ fn run(args: Args) -> Result<()> {
         Some(n) => args.reports.join(format!("limit-{n}")),
         None => args.reports.clone(),
     };
-    for spec in remembered_datasets(&limited).into_iter().chain(args.user_datasets.iter().cloned())
-    {
+    // Datasets scored into these reports before stay in the boards while their folders are
+    // there (they are not rerun unless named with --datasets).
+    let remembered: Vec<DatasetSpec> = remembered_datasets(&limited)
+        .into_iter()
+        .filter(|s| s.dir(&args.datasets_root).join(pairs::dataset::MANIFEST_FILE).exists())
+        .collect();
+    for spec in remembered.into_iter().chain(args.user_datasets.iter().cloned()) {
         if specs.iter().any(|s| s.name == spec.name && s.config.is_some()) {
             anyhow::bail!("--dataset {}: that name is a default dataset's", spec.name);
         }
@@ -159,9 +164,14 @@ fn run(args: Args) -> Result<()> {
             "nothing to do: pass --all, or narrow with --methods/--datasets/--dataset (see --help)"
         );
     }
+    // --datasets names them; else the defaults (unless only --dataset was given) and the
+    // datasets given with --dataset.
     let mut datasets = args.datasets.clone();
-    if datasets.is_empty() && !args.all && !args.user_datasets.is_empty() {
-        datasets = args.user_datasets.iter().map(|s| s.name.clone()).collect();
+    if datasets.is_empty() {
+        if args.all || args.user_datasets.is_empty() {
+            datasets.extend(default_datasets().into_iter().map(|s| s.name));
+        }
+        datasets.extend(args.user_datasets.iter().map(|s| s.name.clone()));
     }
     for spec in &args.user_datasets {
         let dir = spec.dir(&args.datasets_root);
@@ -256,7 +266,16 @@ fn write_iteration_table(
 fn main() {
     tracing_subscriber::fmt().with_writer(std::io::stderr).init();
     if let Err(err) = run(Args::parse()) {
-        eprintln!("error: {err:#}");
+        // The chain of contexts and causes, leaving out a cause whose text its parent's
+        // message already holds (the library's errors quote their sources).
+        let mut parts: Vec<String> = Vec::new();
+        for cause in err.chain() {
+            let text = cause.to_string();
+            if !parts.last().is_some_and(|last| last.contains(&text)) {
+                parts.push(text);
+            }
+        }
+        eprintln!("error: {}", parts.join(": "));
         std::process::exit(1);
     }
 }

@@ -29,7 +29,8 @@ impl Method for Named {
 
 fn entry(name: &'static str, board: Board) -> Entry {
     let runner = Runner::Method(Arc::new(Named(name)));
-    Entry { name: name.into(), runner, board, fingerprint: format!("{name} v1") }
+    let fingerprint = format!("{name} v1");
+    Entry { name: name.into(), runner, board, fingerprint, grid: None, oracle: false }
 }
 
 /// Scores of the `i`-th scored pair of a run, all different from one pair to the next (and
@@ -63,6 +64,7 @@ fn score(i: usize, salt: f64, flow: bool) -> PairScore {
         segments: if i.is_multiple_of(3) { parts } else { parts + 1 },
         rotation_deg: (0..matched).map(|m| 1.5 + 2.25 * x + 0.5 * m as f64).collect(),
         translation: (0..matched).map(|m| 0.02 + 0.003 * x * (m + 1) as f64).collect(),
+        joints: Vec::new(),
     }
 }
 
@@ -79,7 +81,8 @@ fn records(pairs: usize, failed: &[usize], salt: f64, flow: bool) -> Vec<PairRec
                 Ok(score(scored - 1, salt, flow))
             };
             let ms = if outcome.is_err() { 1000.0 + k as f64 } else { 10.0 + k as f64 };
-            PairRecord { pair: format!("pair-{k}"), category: "cat".into(), ms, outcome }
+            let (pair, category) = (format!("pair-{k}"), "cat".into());
+            PairRecord { pair, category, joint_types: "revolute".into(), ms, outcome }
         })
         .collect()
 }
@@ -137,6 +140,7 @@ fn expected_seg(records: &[PairRecord]) -> BTreeMap<&'static str, Option<f64>> {
         ("iou", ratio(sum(&|s| s.p.iou_sum), sum(&|s| f64::from(s.p.parts)))),
         ("rotation_deg", ratio(sum(&|s| s.rotation_deg.iter().sum()), matched)),
         ("translation", ratio(sum(&|s| s.translation.iter().sum()), matched)),
+        ("matched_per_pair", ratio(matched, scored.len() as f64)),
         (
             "part_count_acc",
             mean(
