@@ -1,16 +1,12 @@
-//! Joint estimation scored against the ground-truth joints (beyond the paper): each joint's
-//! part is matched to a predicted segment (the Hungarian matching of the IoU metric), that
-//! segment's joint is estimated from its motion relative to the largest segment
-//! (`pairs::joint_estimate`), and compared: joint type, axis angle (as lines, 0 to 90°) and,
-//! for revolute joints estimated as revolute, the distance from the estimated pivot to the
-//! true axis line (normalised units). A joint whose part has no segment, or whose segment
-//! does not move relative to the base, counts as a wrong type.
+//! Joint scores of `--iterations` (first and last pass) summed over pairs with medians,
+//! from the same per-joint metric as `joints.csv` (`pairs::metrics::joints`): joint type,
+//! axis angle `min(θ, 180° − θ)` and, for revolute joints estimated as revolute, the
+//! distance between the estimated and the true axis lines (normalised units). A joint whose
+//! part has no segment, or whose segment does not move relative to the base, counts as a
+//! wrong type.
 
-use pairs::joint_estimate::{estimate_joints, JointParams};
-use pairs::math::{Point3, Vector3};
-use pairs::metrics::matched_iou;
-use pairs::transform::axis_error_deg;
-use pairs::{JointKind, Pair, Prediction};
+use pairs::metrics::{joint_errors, matched_iou};
+use pairs::{Pair, Prediction};
 
 /// Joint scores summed over pairs.
 #[derive(Debug, Clone, Default, PartialEq)]
@@ -21,14 +17,8 @@ pub struct JointScores {
     pub type_correct: usize,
     /// Axis errors in degrees, one per joint with an estimate.
     pub axis_errors: Vec<f64>,
-    /// Pivot distances, one per revolute joint estimated as revolute.
+    /// Axis line distances, one per revolute joint estimated as revolute.
     pub pivot_distances: Vec<f64>,
-}
-
-/// Distance from `x` to the line through `pivot` along `axis` (unit).
-fn line_distance(x: &Point3, pivot: &Point3, axis: &Vector3) -> f64 {
-    let d = x - pivot;
-    f64::from((d - axis * d.dot(axis)).norm())
 }
 
 impl JointScores {
@@ -40,31 +30,24 @@ impl JointScores {
         self.pivot_distances.extend(other.pivot_distances);
     }
 
-    /// Adds one pair's prediction.
+    /// Adds one pair's prediction, scored by `pairs::metrics::joints` (the pivot distance
+    /// is the distance between the estimated and the true axis lines).
     pub fn add(&mut self, pair: &Pair, prediction: &Prediction) {
         let truth = pair.truth();
         let Ok(matching) = matched_iou(&prediction.segments_p, &truth.part_p) else { return };
-        let estimates = estimate_joints(
-            &pair.input().p.points,
+        let input = pair.input();
+        for joint in joint_errors(
+            &input.p.points,
             &prediction.segments_p,
             &prediction.motions,
-            &JointParams::default(),
-        );
-        for joint in &truth.joints {
+            &matching,
+            &truth.joints,
+            input.p.normalisation.scale,
+        ) {
             self.joints += 1;
-            let estimate = matching
-                .segment
-                .get(usize::from(joint.part))
-                .copied()
-                .flatten()
-                .and_then(|s| estimates.get(s as usize).copied().flatten());
-            let Some(estimate) = estimate else { continue };
-            self.type_correct += usize::from(estimate.kind == joint.kind);
-            self.axis_errors.push(f64::from(axis_error_deg(&estimate.axis, &joint.axis_p)));
-            if joint.kind == JointKind::Revolute && estimate.kind == JointKind::Revolute {
-                let axis = joint.axis_p.normalize();
-                self.pivot_distances.push(line_distance(&estimate.pivot, &joint.pivot_p, &axis));
-            }
+            self.type_correct += usize::from(joint.type_correct());
+            self.axis_errors.extend(joint.axis_deg);
+            self.pivot_distances.extend(joint.line_distance);
         }
     }
 
