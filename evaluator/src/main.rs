@@ -173,11 +173,6 @@ fn run(args: Args) -> Result<()> {
         }
         datasets.extend(args.user_datasets.iter().map(|s| s.name.clone()));
     }
-    for spec in &args.user_datasets {
-        let dir = spec.dir(&args.datasets_root);
-        load_dataset(&spec.name, &dir, Some(1))
-            .with_context(|| format!("--dataset {}={}", spec.name, dir.display()))?;
-    }
     let selected = datasets.clone();
     let options = Options {
         datasets,
