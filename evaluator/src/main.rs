@@ -258,6 +258,11 @@ fn write_iteration_table(
     Ok(())
 }
 
+/// jemalloc keeps freed large blocks for reuse (see the workspace's Cargo.toml).
+#[cfg(not(target_env = "msvc"))]
+#[global_allocator]
+static ALLOCATOR: tikv_jemallocator::Jemalloc = tikv_jemallocator::Jemalloc;
+
 fn main() {
     tracing_subscriber::fmt().with_writer(std::io::stderr).init();
     if let Err(err) = run(Args::parse()) {

@@ -10,10 +10,15 @@ use model::apps::load_network_folder;
 use model::inference::InferenceParams;
 use model::validation::validation_pairs;
 
+/// jemalloc keeps freed large blocks for reuse (see the workspace's Cargo.toml).
+#[cfg(not(target_env = "msvc"))]
+#[global_allocator]
+static ALLOCATOR: tikv_jemallocator::Jemalloc = tikv_jemallocator::Jemalloc;
+
 fn bench(c: &mut Criterion) {
     let weights = Path::new(env!("CARGO_MANIFEST_DIR")).join("weights/cpu");
     let net = load_network_folder(&weights).expect("the shipped weights load");
-    let pairs = validation_pairs(512, 2).expect("validation pairs");
+    let pairs = validation_pairs(512, 2, false).expect("validation pairs");
     let input = pairs[0].input();
     let mut group = c.benchmark_group("inference");
     group.sample_size(10);

@@ -1,18 +1,21 @@
 //! Speed of the network on this machine: one single-pass prediction at N = 512 (the paper's
 //! target is 0.4 s on a TITAN Xp) and one training step of every stage, for the `cpu` and
-//! `paper` configs. Peak memory: run `model train` under `/usr/bin/time -v`.
+//! `paper` configs (the `cpu` step on its `replicas` threads). Peak memory: run `model train` under `/usr/bin/time -v`.
 
-use burn::optim::{AdamConfig, GradientsParams};
+use burn::optim::AdamConfig;
 use burn::prelude::*;
 use criterion::{criterion_group, criterion_main, Criterion};
 use generator::config::GeneratorConfig;
 use generator::stream::TrainingStream;
-use model::batch::TrainingBatch;
 use model::config::TrainConfig;
 use model::network::PartNet;
-use model::objective::stage_loss;
-use model::train::stream_config;
+use model::train::{batch_gradients, stream_config};
 use pairs::math::Matrix3;
+
+/// jemalloc keeps freed large blocks for reuse (see the workspace's Cargo.toml).
+#[cfg(not(target_env = "msvc"))]
+#[global_allocator]
+static ALLOCATOR: tikv_jemallocator::Jemalloc = tikv_jemallocator::Jemalloc;
 
 fn bench(c: &mut Criterion) {
     let mut group = c.benchmark_group("network");
@@ -32,18 +35,19 @@ fn bench(c: &mut Criterion) {
         let device = Device::flex().autodiff();
         let batch_size = if name == "paper" { 2 } else { config.batch };
         let rotations = vec![Matrix3::identity(); batch_size];
-        let batch = TrainingBatch::new(&pairs[..batch_size], &rotations, &config.network, &device)
-            .expect("a batch");
+        let batch = &pairs[..batch_size];
         for stage in 1..=3u8 {
             let mut net = PartNet::seeded(&config.network, &device, 1);
             let mut optimizer = AdamConfig::new().init();
+            // One optimiser step as the trainer takes it: the batch's tensors, the loss (on
+            // `replicas` threads), backward and Adam.
             group.bench_function(
                 format!("{name}/train_step_stage{stage}_batch{batch_size}"),
                 |b| {
                     b.iter(|| {
-                        let (loss, _) =
-                            stage_loss(&net, &batch, stage, config.end_to_end).expect("a loss");
-                        let grads = GradientsParams::from_grads(loss.backward(), &net);
+                        let (_, _, grads) =
+                            batch_gradients(&net, &config, &device, batch, &rotations, stage)
+                                .expect("a loss");
                         net = optimizer.step(1e-4, net.clone(), grads);
                     })
                 },

@@ -21,7 +21,7 @@ fn main() -> anyhow::Result<()> {
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(17);
     let mut within = 0;
     let mut errors = Vec::new();
-    for pair in validation_pairs(512, count)? {
+    for pair in validation_pairs(512, count, false)? {
         let (u1, u2, u3): (f32, f32, f32) = (rng.random(), rng.random(), rng.random());
         let tau = std::f32::consts::TAU;
         let truth = UnitQuaternion::from_quaternion(nalgebra::Quaternion::new(

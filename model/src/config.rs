@@ -149,9 +149,20 @@ pub struct TrainConfig {
     pub batch: usize,
     /// Adam's initial learning rate.
     pub learning_rate: f64,
-    /// Factor applied to the learning rate every `decay_every_pairs` pairs.
+    /// How the learning rate moves from `learning_rate` towards `min_learning_rate`:
+    /// `step` (the default; every `decay_every_pairs` pairs it is multiplied by `decay`, over
+    /// the whole run) or `cosine` (in every stage afresh: a linear warm-up over
+    /// `warmup_pairs`, then half a cosine down to the floor at the stage's end).
+    #[serde(default)]
+    pub schedule: Schedule,
+    /// Pairs of linear warm-up at the start of every stage (`cosine` only).
+    #[serde(default)]
+    pub warmup_pairs: u64,
+    /// Factor applied to the learning rate every `decay_every_pairs` pairs (`step` only).
+    #[serde(default = "no_decay")]
     pub decay: f64,
-    /// Pairs between learning-rate decays.
+    /// Pairs between learning-rate decays (`step` only).
+    #[serde(default = "never")]
     pub decay_every_pairs: u64,
     /// Smallest learning rate.
     pub min_learning_rate: f64,
@@ -178,14 +189,44 @@ pub struct TrainConfig {
     pub scanned_per_pair: u32,
     /// Seed of the training stream and the augmentation.
     pub seed: u64,
-    /// Pairs in the fixed validation set (validation categories).
+    /// Pairs in the fixed validation set (validation categories; a quarter each of SF2P and
+    /// SP2P pairs when the stream trains on scans, see [`crate::validation::validation_pairs`]).
     pub validation_pairs: u32,
+    /// Data-parallel replicas of a step: the batch is split into this many equal shards,
+    /// each run forward and backward on its own thread, and their gradients are summed (each
+    /// shard's loss weighted by its share of the batch). 1 runs the whole batch as one.
+    /// Results depend on this number, never on the machine's thread count.
+    #[serde(default = "one")]
+    pub replicas: usize,
     /// Pairs between validations.
     pub validate_every_pairs: u64,
     /// Minutes between checkpoints.
     pub checkpoint_minutes: f64,
     /// Network sizes.
     pub network: NetworkConfig,
+}
+
+/// A learning-rate schedule (see [`TrainConfig::learning_rate_at`]).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Schedule {
+    /// Multiply by `decay` every `decay_every_pairs` pairs, down to the floor.
+    #[default]
+    Step,
+    /// Per stage: linear warm-up over `warmup_pairs`, then a half cosine down to the floor.
+    Cosine,
+}
+
+fn no_decay() -> f64 {
+    1.0
+}
+
+fn never() -> u64 {
+    u64::MAX
+}
+
+fn one() -> usize {
+    1
 }
 
 /// The configs built into the crate, by name.
@@ -233,6 +274,9 @@ impl TrainConfig {
         if self.batch == 0 {
             return Err(invalid("batch", "must be at least 1"));
         }
+        if self.replicas == 0 || !self.batch.is_multiple_of(self.replicas) {
+            return Err(invalid("replicas", "must be at least 1 and divide batch"));
+        }
         for (field, v) in [
             ("learning_rate", self.learning_rate),
             ("decay", self.decay),
@@ -272,10 +316,35 @@ impl TrainConfig {
         }
     }
 
-    /// The learning rate after `pairs` training pairs (step decay with a floor).
+    /// The first pair and the length of the stage that pair `pairs` belongs to.
+    fn stage_span(&self, pairs: u64) -> (u64, u64) {
+        match self.stage_at(pairs) {
+            1 => (0, self.stage1_pairs),
+            2 => (self.stage1_pairs, self.stage2_pairs),
+            _ => (self.stage1_pairs + self.stage2_pairs, self.stage3_pairs),
+        }
+    }
+
+    /// The learning rate of the step that starts after `pairs` training pairs.
     pub fn learning_rate_at(&self, pairs: u64) -> f64 {
-        let decays = (pairs / self.decay_every_pairs) as i32;
-        (self.learning_rate * self.decay.powi(decays)).max(self.min_learning_rate)
+        let (peak, floor) = (self.learning_rate, self.min_learning_rate);
+        match self.schedule {
+            Schedule::Step => {
+                let decays = i32::try_from(pairs / self.decay_every_pairs).unwrap_or(i32::MAX);
+                (peak * self.decay.powi(decays)).max(floor)
+            }
+            Schedule::Cosine => {
+                let (start, length) = self.stage_span(pairs);
+                let t = pairs - start;
+                let warmup = self.warmup_pairs.min(length);
+                if t < warmup {
+                    // From peak / warmup at the first step up to the peak.
+                    return (peak * (t + 1) as f64 / warmup as f64).max(floor.min(peak));
+                }
+                let progress = (t - warmup) as f64 / (length - warmup).max(1) as f64;
+                floor + (peak - floor) * 0.5 * (1.0 + (std::f64::consts::PI * progress).cos())
+            }
+        }
     }
 }
 
@@ -318,5 +387,39 @@ mod tests {
         assert_eq!(c.learning_rate_at(10), 5e-5);
         assert_eq!(c.learning_rate_at(1000), 3e-5);
         assert_eq!((c.stage_at(4), c.stage_at(5), c.stage_at(10)), (1, 2, 3));
+    }
+
+    #[test]
+    fn cosine_warms_up_then_falls_to_the_floor_in_every_stage() {
+        let c = TrainConfig {
+            schedule: Schedule::Cosine,
+            warmup_pairs: 10,
+            learning_rate: 1e-3,
+            min_learning_rate: 1e-5,
+            stage1_pairs: 110,
+            stage2_pairs: 30,
+            stage3_pairs: 210,
+            ..TrainConfig::built_in("tiny")
+        };
+        let close = |a: f64, b: f64| (a - b).abs() < 1e-12;
+        // Warm-up: 1/10, ..., 10/10 of the peak over the first 10 pairs of each stage.
+        assert!(close(c.learning_rate_at(0), 1e-4));
+        assert!(close(c.learning_rate_at(9), 1e-3));
+        assert!(close(c.learning_rate_at(10), 1e-3));
+        // Half-way through the cosine part (pair 10 + 50): midway between peak and floor.
+        assert!(close(c.learning_rate_at(60), 0.5 * (1e-3 + 1e-5)));
+        // Stage 2 starts over: warm-up again.
+        assert!(close(c.learning_rate_at(110), 1e-4));
+        // The rate never rises within the cosine part and ends near the floor.
+        let rates: Vec<f64> = (150..350).map(|p| c.learning_rate_at(p)).collect();
+        assert!(rates.windows(2).all(|w| w[1] <= w[0]));
+        assert!(rates[rates.len() - 1] < 1.1e-5 && rates[rates.len() - 1] >= 1e-5);
+    }
+
+    #[test]
+    fn replicas_must_divide_the_batch() {
+        let text = BUILT_IN[2].1.replace("batch = 8", "batch = 8\nreplicas = 3");
+        let err = TrainConfig::from_toml(&text, "t").expect_err("3 does not divide 8").to_string();
+        assert!(err.contains("replicas"), "{err}");
     }
 }

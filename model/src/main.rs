@@ -14,7 +14,7 @@ use model::apps::{
 use model::checkpoint::{load_weights, CheckpointDir};
 use model::config::TrainConfig;
 use model::inference::InferenceParams;
-use model::train::{RunPaths, Trainer};
+use model::train::{Budget, RunPaths, Trainer};
 use model::validation::{score, validation_pairs};
 use pairs::{PairInput, Prediction};
 
@@ -51,6 +51,10 @@ enum Command {
         /// Stop after this many steps (a checkpoint is written), e.g. to time a config.
         #[arg(long)]
         max_steps: Option<u64>,
+        /// Stop after this many minutes of training (a checkpoint is written; the next
+        /// `train` resumes from it), e.g. for a bounded slot on a GPU machine.
+        #[arg(long)]
+        max_minutes: Option<f64>,
         /// Device to train on.
         #[arg(long, value_enum, default_value_t = DeviceKind::Cpu)]
         device: DeviceKind,
@@ -164,6 +168,11 @@ fn device(kind: DeviceKind) -> Result<Device> {
     }
 }
 
+/// jemalloc keeps freed large blocks for reuse (see the workspace's Cargo.toml).
+#[cfg(not(target_env = "msvc"))]
+#[global_allocator]
+static ALLOCATOR: tikv_jemallocator::Jemalloc = tikv_jemallocator::Jemalloc;
+
 fn main() -> Result<()> {
     tracing_subscriber::fmt()
         .with_env_filter(
@@ -173,7 +182,14 @@ fn main() -> Result<()> {
         .with_writer(std::io::stderr)
         .init();
     match Cli::parse().command {
-        Command::Train { config, checkpoints, reports, max_steps, device: kind } => {
+        Command::Train { config, checkpoints, reports, max_steps, max_minutes, device: kind } => {
+            if let Some(m) = max_minutes.filter(|m| !(m.is_finite() && *m > 0.0)) {
+                anyhow::bail!("--max-minutes must be a positive number of minutes, not {m}");
+            }
+            let budget = Budget {
+                steps: max_steps,
+                time: max_minutes.map(|m| std::time::Duration::from_secs_f64(m * 60.0)),
+            };
             let config = TrainConfig::load(&config)?;
             let mut paths = RunPaths::for_config(&config);
             if let Some(dir) = checkpoints {
@@ -194,7 +210,7 @@ fn main() -> Result<()> {
             );
             bar.set_position(trainer.state().pairs);
             trainer
-                .run(max_steps, |p| {
+                .run(budget, |p| {
                     bar.set_position(p.row.pairs);
                     let v = p.validation.map_or(String::new(), |v| {
                         format!(
@@ -231,8 +247,12 @@ fn main() -> Result<()> {
             let config = TrainConfig::load(&config)?;
             let net = load_weights(&config.network, &weights, &Device::flex())
                 .with_context(|| format!("loading weights {}", weights.display()))?;
-            let pairs = validation_pairs(config.points, config.validation_pairs)
-                .context("generating the validation pairs")?;
+            let pairs = validation_pairs(
+                config.points,
+                config.validation_pairs,
+                config.scanned_per_pair > 0,
+            )
+            .context("generating the validation pairs")?;
             let s = score(&net, &pairs)?;
             println!(
                 "{} validation pairs: EPE {:.4}, RI {:.4}, IoU {:.4}",

@@ -37,6 +37,35 @@ pub const TERM_NAMES: [&str; 6] =
     ["correspondence", "flow", "motion", "support", "segment", "continuation"];
 
 impl LossTerms {
+    /// Every term multiplied by `factor`.
+    pub fn scaled(&self, factor: f32) -> Self {
+        let f = |v: Option<f32>| v.map(|v| v * factor);
+        Self {
+            correspondence: f(self.correspondence),
+            flow: f(self.flow),
+            motion: f(self.motion),
+            support: f(self.support),
+            segment: f(self.segment),
+            continuation: f(self.continuation),
+        }
+    }
+
+    /// Term-by-term sums (a term absent from both stays absent).
+    pub fn plus(&self, other: &Self) -> Self {
+        let f = |a: Option<f32>, b: Option<f32>| match (a, b) {
+            (None, None) => None,
+            (a, b) => Some(a.unwrap_or(0.0) + b.unwrap_or(0.0)),
+        };
+        Self {
+            correspondence: f(self.correspondence, other.correspondence),
+            flow: f(self.flow, other.flow),
+            motion: f(self.motion, other.motion),
+            support: f(self.support, other.support),
+            segment: f(self.segment, other.segment),
+            continuation: f(self.continuation, other.continuation),
+        }
+    }
+
     /// The terms in [`TERM_NAMES`] order.
     pub fn values(&self) -> [Option<f32>; 6] {
         [self.correspondence, self.flow, self.motion, self.support, self.segment, self.continuation]

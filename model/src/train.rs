@@ -7,7 +7,8 @@ use std::path::PathBuf;
 use std::time::Instant;
 
 use burn::grad_clipping::GradientClippingConfig;
-use burn::optim::{AdamConfig, GradientsParams, ModuleOptimizer};
+use burn::module::{ModuleMapper, Param};
+use burn::optim::{AdamConfig, GradientsAccumulator, GradientsParams, ModuleOptimizer};
 use burn::prelude::*;
 use generator::config::GeneratorConfig;
 use generator::stream::TrainingStream;
@@ -15,13 +16,14 @@ use pairs::math::{Matrix3, Rotation3, Vector3};
 use pairs::Pair;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
+use rayon::prelude::*;
 
 use crate::batch::TrainingBatch;
 use crate::checkpoint::{save_weights, Best, CheckpointDir, CheckpointError, TrainState};
 use crate::config::TrainConfig;
 use crate::log::{Log, LogError, StepRow, ValidationRow};
 use crate::network::PartNet;
-use crate::objective::stage_loss;
+use crate::objective::{stage_loss, LossTerms};
 use crate::sampling::SamplingError;
 use crate::validation::{score, validation_pairs, ScoreError};
 
@@ -88,6 +90,22 @@ impl RunPaths {
     }
 }
 
+/// How much of a run one call of [`Trainer::run`] may do (the default: all of it).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Budget {
+    /// Most optimiser steps.
+    pub steps: Option<u64>,
+    /// Most wall-clock time; the step under way when it runs out is finished.
+    pub time: Option<std::time::Duration>,
+}
+
+impl Budget {
+    /// At most `steps` steps.
+    pub fn steps(steps: u64) -> Self {
+        Self { steps: Some(steps), time: None }
+    }
+}
+
 /// What the caller sees after every step, for progress display.
 #[derive(Debug, Clone, Copy)]
 pub struct Progress<'a> {
@@ -130,6 +148,93 @@ fn augmentation(config: &TrainConfig, step: u64, index: usize) -> Matrix3 {
     };
     let angle = rng.random_range(0.0..=config.augment_rotation_deg as f32).to_radians();
     *Rotation3::from_scaled_axis(axis * angle).matrix()
+}
+
+/// The loss of a batch, its terms and the gradients: the whole batch at once, or split
+/// into `replicas` equal shards run on their own threads, each on a replica of the
+/// network whose parameters are fresh autodiff leaves (so the shards' graphs stay
+/// apart), each shard's loss weighted by its share of the batch, and the gradients summed
+/// in shard order (the same sum whatever the machine's thread count).
+pub fn batch_gradients(
+    net: &PartNet,
+    config: &TrainConfig,
+    device: &Device,
+    pairs: &[Pair],
+    rotations: &[Matrix3],
+    stage: u8,
+) -> Result<(f32, LossTerms, GradientsParams), SamplingError> {
+    let shards = config.replicas.clamp(1, pairs.len().max(1));
+    let run = |net: &PartNet, pairs: &[Pair], rotations: &[Matrix3]| {
+        let batch = TrainingBatch::new(pairs, rotations, &config.network, device)?;
+        let (loss, terms) = stage_loss(net, &batch, stage, config.end_to_end)?;
+        let value = loss.clone().into_scalar::<f32>();
+        Ok::<_, SamplingError>((loss, value, terms))
+    };
+    if shards == 1 {
+        let (loss, value, terms) = run(net, pairs, rotations)?;
+        return Ok((value, terms, GradientsParams::from_grads(loss.backward(), net)));
+    }
+    let size = pairs.len().div_ceil(shards);
+    let jobs: Vec<(PartNet, &[Pair], &[Matrix3])> = pairs
+        .chunks(size)
+        .zip(rotations.chunks(size))
+        .map(|(chunk, rots)| (net.clone().map(&mut FreshLeaves), chunk, rots))
+        .collect();
+    // The shards run on long-lived threads: a thread that exits makes the allocator hand its
+    // memory back to the kernel, and the next step would page-fault it in again.
+    let results: Vec<Result<(f32, LossTerms, GradientsParams), SamplingError>> = replica_pool()
+        .install(|| {
+            jobs.into_par_iter()
+                .map(|(replica, chunk, rots)| {
+                    let share = chunk.len() as f32 / pairs.len() as f32;
+                    let (loss, value, terms) = run(&replica, chunk, rots)?;
+                    let grads = GradientsParams::from_grads((loss * share).backward(), &replica);
+                    Ok((value * share, terms.scaled(share), grads))
+                })
+                .collect()
+        });
+    let mut accumulator = GradientsAccumulator::<PartNet>::new();
+    let (mut value, mut terms) = (0.0, LossTerms::default());
+    for result in results {
+        let (v, t, grads) = result?;
+        value += v;
+        terms = terms.plus(&t);
+        accumulator.accumulate(net, grads);
+    }
+    Ok((value, terms, accumulator.grads()))
+}
+
+/// The threads that run a step's shards: one per core (at least two), kept for the process's
+/// life. Results do not depend on their number: each shard is computed on one thread and the
+/// shards' gradients are summed in shard order.
+fn replica_pool() -> &'static rayon::ThreadPool {
+    static POOL: std::sync::OnceLock<rayon::ThreadPool> = std::sync::OnceLock::new();
+    POOL.get_or_init(|| {
+        let threads = std::thread::available_parallelism().map_or(2, usize::from).max(2);
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .thread_name(|i| format!("replica-{i}"))
+            .build()
+            .expect("the replica threads start")
+    })
+}
+
+/// Maps every parameter to a new autodiff leaf holding the same values (same parameter id),
+/// for a replica whose graph must not share nodes with another thread's.
+struct FreshLeaves;
+
+impl ModuleMapper for FreshLeaves {
+    fn map_float<const D: usize>(&mut self, param: Param<Tensor<D>>) -> Param<Tensor<D>> {
+        param.map(|t| {
+            let grad = t.is_require_grad();
+            let fresh = t.detach();
+            if grad {
+                fresh.require_grad()
+            } else {
+                fresh
+            }
+        })
+    }
 }
 
 /// Where training pairs come from.
@@ -222,7 +327,11 @@ impl Trainer {
                     stream_config(&config),
                     state.next_object,
                 )?),
-                validation_pairs(config.points, config.validation_pairs)?,
+                validation_pairs(
+                    config.points,
+                    config.validation_pairs,
+                    config.scanned_per_pair > 0,
+                )?,
             ),
         };
         Ok(Self { config, paths, device, net, optimizer, state, source, validation, log })
@@ -258,17 +367,14 @@ impl Trainer {
         let step = self.state.step;
         let rotations: Vec<Matrix3> =
             (0..pairs.len()).map(|i| augmentation(&self.config, step, i)).collect();
-        let batch = TrainingBatch::new(&pairs, &rotations, &self.config.network, &self.device)
-            .map_err(|source| TrainError::Batch { step, source })?;
         let stage = self.config.stage_at(self.state.pairs);
-        let (loss, terms) = stage_loss(&self.net, &batch, stage, self.config.end_to_end)
-            .map_err(|source| TrainError::Batch { step, source })?;
-        let value = loss.clone().into_scalar::<f32>();
+        let (value, terms, grads) =
+            batch_gradients(&self.net, &self.config, &self.device, &pairs, &rotations, stage)
+                .map_err(|source| TrainError::Batch { step, source })?;
         if !value.is_finite() {
             return Err(TrainError::Diverged { step, stage, value });
         }
         let lr = self.config.learning_rate_at(self.state.pairs);
-        let grads = GradientsParams::from_grads(loss.backward(), &self.net);
         self.net = self.optimizer.step(lr, self.net.clone(), grads);
         self.state.step += 1;
         self.state.pairs += pairs.len() as u64;
@@ -320,20 +426,25 @@ impl Trainer {
         Ok(())
     }
 
-    /// Trains until the config's last stage ends (or `max_steps` more steps), validating and
-    /// checkpointing on schedule; `progress` is called after every step.
+    /// Trains until the config's last stage ends or the `budget` is spent, validating and
+    /// checkpointing on schedule (and once more at the end); `progress` is called after
+    /// every step.
     pub fn run(
         &mut self,
-        max_steps: Option<u64>,
+        budget: Budget,
         mut progress: impl FnMut(Progress<'_>),
     ) -> Result<(), TrainError> {
+        let started = Instant::now();
         let total = self.config.total_pairs();
         let every = self.config.validate_every_pairs;
         let interval = std::time::Duration::from_secs_f64(self.config.checkpoint_minutes * 60.0);
         let mut last_save = Instant::now();
         let mut latest: Option<ValidationRow> = None;
         let mut taken = 0;
-        while self.state.pairs < total && max_steps.is_none_or(|m| taken < m) {
+        while self.state.pairs < total
+            && budget.steps.is_none_or(|m| taken < m)
+            && budget.time.is_none_or(|t| started.elapsed() < t)
+        {
             let before = self.state.pairs;
             let row = self.step()?;
             taken += 1;

@@ -4,9 +4,10 @@
 
 use generator::categories::Split;
 use generator::config::GeneratorConfig;
-use generator::generate::{object_pairs, GenerateError};
+use generator::generate::{object_pairs_with, GenerateError, Variant};
 use pairs::metrics::{epe, matched_iou, rand_index};
 use pairs::Pair;
+use pairs::PairKind;
 
 use crate::network::PartNet;
 use crate::sampling::SamplingError;
@@ -14,18 +15,35 @@ use crate::sampling::SamplingError;
 /// Seed of the validation pairs; fixed so that every run is scored on the same pairs.
 pub const VALIDATION_SEED: u64 = 20_181_201;
 
-/// The first `count` pairs of the validation categories at `points` points per cloud.
-pub fn validation_pairs(points: u32, count: u32) -> Result<Vec<Pair>, GenerateError> {
+/// The fixed validation set: `count` pairs of the validation categories at `points` points
+/// per cloud. With `scanned`, for runs whose training stream mixes in scans, a quarter of
+/// them are SF2P and a quarter SP2P pairs (of objects of their own), the rest full shapes.
+pub fn validation_pairs(
+    points: u32,
+    count: u32,
+    scanned: bool,
+) -> Result<Vec<Pair>, GenerateError> {
+    let (full, sf2p, sp2p) =
+        if scanned { (count - 2 * (count / 4), count / 4, count / 4) } else { (count, 0, 0) };
+    let mut pairs = pairs_of_kind(PairKind::Sf2f, points, full)?;
+    pairs.extend(pairs_of_kind(PairKind::Sf2p, points, sf2p)?);
+    pairs.extend(pairs_of_kind(PairKind::Sp2p, points, sp2p)?);
+    Ok(pairs)
+}
+
+/// The first `count` validation pairs of one kind, object after object (no images).
+fn pairs_of_kind(kind: PairKind, points: u32, count: u32) -> Result<Vec<Pair>, GenerateError> {
     let config = GeneratorConfig {
         split: Split::Validation,
         points,
         seed: VALIDATION_SEED,
-        ..GeneratorConfig::default()
+        ..GeneratorConfig::of_kind(kind)
     };
+    let variant = Variant { index: 0, kind, images: false };
     let mut pairs = Vec::with_capacity(count as usize);
     let mut object = 0;
     while pairs.len() < count as usize {
-        match object_pairs(&config, object) {
+        match object_pairs_with(&config, object, variant) {
             Ok(made) => pairs.extend(made.into_iter().map(|g| g.pair)),
             Err(GenerateError::TooFewPairs { .. }) => {}
             Err(e) => return Err(e),

@@ -9,7 +9,7 @@ use model::checkpoint::{load_weights, save_weights, CheckpointDir};
 use model::config::TrainConfig;
 use model::network::PartNet;
 use model::sampling::SamplingError;
-use model::train::{stream_config, RunPaths, Trainer};
+use model::train::{stream_config, Budget, RunPaths, Trainer};
 use pairs::math::Point3;
 use pairs::{Cloud, Pair, PairInput};
 
@@ -61,26 +61,34 @@ fn saved_and_loaded_weights_predict_bit_identically() {
     assert!(load_weights(&wrong, &file, &Device::flex()).is_err(), "other sizes are refused");
 }
 
+/// Trains on `pairs` in `root` in legs of `legs` steps (each a new trainer resuming from the
+/// last one's checkpoint), then predicts the first pair with the saved weights.
+fn train_in_legs(
+    config: &TrainConfig,
+    pairs: &[Pair],
+    root: &std::path::Path,
+    legs: &[u64],
+) -> pairs::Prediction {
+    for &steps in legs {
+        let mut t = Trainer::on_pairs(
+            config.clone(),
+            paths(root),
+            Device::flex().autodiff(),
+            pairs.to_vec(),
+        )
+        .expect("a trainer");
+        t.run(Budget::steps(steps), |_| {}).expect("training runs");
+    }
+    let net = load_weights(&config.network, &root.join("checkpoints/model.bpk"), &Device::flex())
+        .expect("weights");
+    net.predict(pairs[0].input()).expect("runs")
+}
+
 #[test]
 fn a_resumed_run_ends_with_the_same_weights_as_an_uninterrupted_one() {
     let config = tiny();
     let pairs = some_pairs(&config, 8);
-    let run = |root: &std::path::Path, legs: &[u64]| {
-        for &steps in legs {
-            let mut t = Trainer::on_pairs(
-                config.clone(),
-                paths(root),
-                Device::flex().autodiff(),
-                pairs.clone(),
-            )
-            .expect("a trainer");
-            t.run(Some(steps), |_| {}).expect("training runs");
-        }
-        let net =
-            load_weights(&config.network, &root.join("checkpoints/model.bpk"), &Device::flex())
-                .expect("weights");
-        net.predict(pairs[0].input()).expect("runs")
-    };
+    let run = |root: &std::path::Path, legs: &[u64]| train_in_legs(&config, &pairs, root, legs);
     let (a, b) = (tempfile::tempdir().expect("dir"), tempfile::tempdir().expect("dir"));
     // Six steps cross both stage boundaries; the break falls inside stage 2.
     let straight = run(a.path(), &[6]);
@@ -143,4 +151,84 @@ fn the_segmentation_module_on_the_networks_own_flow_predicts_like_the_network() 
         assert_eq!(alone.segments_q, whole.segments_q);
         assert!(alone.flow.is_none());
     }
+}
+
+/// Every parameter's gradient, in module order (empty for a parameter without one).
+fn gradient_values(net: &PartNet, grads: &burn::optim::GradientsParams) -> Vec<Vec<f32>> {
+    struct Collect<'a> {
+        grads: &'a burn::optim::GradientsParams,
+        out: Vec<Vec<f32>>,
+    }
+    impl burn::module::ModuleVisitor for Collect<'_> {
+        fn visit_float<const D: usize>(&mut self, param: &burn::module::Param<Tensor<D>>) {
+            let values = self.grads.get::<D>(param.id).map_or_else(Vec::new, |g| {
+                g.into_data().convert::<f32>().try_to_vec().expect("f32")
+            });
+            self.out.push(values);
+        }
+    }
+    let mut visitor = Collect { grads, out: Vec::new() };
+    net.visit(&mut visitor);
+    visitor.out
+}
+
+#[test]
+fn two_replicas_sum_the_gradients_of_their_halves_of_the_batch() {
+    use model::train::batch_gradients;
+    use pairs::math::Matrix3;
+    let one = TrainConfig { batch: 4, replicas: 1, ..tiny() };
+    let two = TrainConfig { replicas: 2, ..one.clone() };
+    let pairs = some_pairs(&one, 4);
+    let rotations = vec![Matrix3::identity(); 4];
+    let device = Device::flex().autodiff();
+    let net = PartNet::seeded(&one.network, &device, 5);
+    for stage in [1u8, 3] {
+        let (value, _, grads) =
+            batch_gradients(&net, &two, &device, &pairs, &rotations, stage).expect("a step");
+        let together = gradient_values(&net, &grads);
+        let halves: Vec<_> = [0..2, 2..4]
+            .into_iter()
+            .map(|range| {
+                let (v, _, g) = batch_gradients(
+                    &net,
+                    &one,
+                    &device,
+                    &pairs[range.clone()],
+                    &rotations[range],
+                    stage,
+                )
+                .expect("a step");
+                (v, gradient_values(&net, &g))
+            })
+            .collect();
+        assert!((value - 0.5 * (halves[0].0 + halves[1].0)).abs() <= 1e-5 * value.abs());
+        let mut compared = 0;
+        for (i, sum) in together.iter().enumerate() {
+            let (a, b) = (&halves[0].1[i], &halves[1].1[i]);
+            if a.is_empty() && b.is_empty() {
+                assert!(sum.is_empty(), "parameter {i} has a gradient from no shard");
+                continue;
+            }
+            for (k, s) in sum.iter().enumerate() {
+                let expected = 0.5 * (a.get(k).unwrap_or(&0.0) + b.get(k).unwrap_or(&0.0));
+                assert!(
+                    (s - expected).abs() <= 1e-5 * (1.0 + expected.abs()),
+                    "stage {stage}, parameter {i}[{k}]: {s} vs {expected}"
+                );
+                compared += 1;
+            }
+        }
+        assert!(compared > 1000, "stage {stage}: only {compared} gradient entries");
+    }
+}
+
+#[test]
+fn a_two_replica_run_is_deterministic_and_resumes_bit_identically() {
+    let config = TrainConfig { replicas: 2, ..tiny() };
+    let pairs = some_pairs(&config, 8);
+    let run = |root: &std::path::Path, legs: &[u64]| train_in_legs(&config, &pairs, root, legs);
+    let dirs: Vec<_> = (0..3).map(|_| tempfile::tempdir().expect("dir")).collect();
+    let straight = run(dirs[0].path(), &[5]);
+    assert_eq!(straight, run(dirs[1].path(), &[5]), "two identical runs differ");
+    assert_eq!(straight, run(dirs[2].path(), &[2, 3]), "resuming changed the weights");
 }

@@ -10,7 +10,7 @@ use model::checkpoint::CheckpointDir;
 use model::config::TrainConfig;
 use model::network::PartNet;
 use model::objective::stage_loss;
-use model::train::{stream_config, RunPaths, Trainer};
+use model::train::{stream_config, Budget, RunPaths, Trainer};
 use model::validation::score;
 use pairs::math::Matrix3;
 use pairs::Pair;
@@ -39,7 +39,7 @@ fn tiny_config_overfits_eight_pairs() {
     let mut trainer =
         Trainer::on_pairs(config.clone(), paths, device.clone(), pairs.clone()).expect("a trainer");
     let before = full_objective(trainer.network(), &pairs, &config, &device);
-    trainer.run(None, |_| {}).expect("training runs");
+    trainer.run(Budget::default(), |_| {}).expect("training runs");
     let after = full_objective(trainer.network(), &pairs, &config, &device);
     let scores = score(&trainer.network().valid(), &pairs).expect("scores");
     eprintln!("full objective {before} -> {after}; {scores:?}");
