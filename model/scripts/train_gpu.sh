@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Continue a training run on a CUDA machine for a bounded time, from its latest checkpoint,
-# and leave a checkpoint that the CPU trainer resumes from (and the other way round).
+# and leave a checkpoint for the CPU trainer to resume from (and the other way round:
+# checkpoints are burn records, which hold no device; not yet run on a GPU machine).
 #
 #   model/scripts/train_gpu.sh MINUTES [CONFIG] [CHECKPOINTS]
 #
