@@ -92,4 +92,16 @@ pub enum EvalError {
         /// What went wrong.
         message: String,
     },
+    /// A prediction file cannot be read or written (its structure, schema or header is
+    /// broken; the error names the file).
+    #[error(transparent)]
+    Predictions(#[from] pairs::PredictionsError),
+    /// A prediction file does not fit the dataset it is scored on.
+    #[error("predictions {}: {message}", path.display())]
+    PredictionsMismatch {
+        /// The file.
+        path: PathBuf,
+        /// What does not fit.
+        message: String,
+    },
 }

@@ -20,8 +20,10 @@
 //! ```
 #![deny(missing_docs)]
 
+pub mod commands;
 pub mod datasets;
 pub mod error;
+pub mod external;
 pub mod files;
 pub mod gallery;
 pub mod iterations;

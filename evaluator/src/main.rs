@@ -6,6 +6,9 @@ use std::time::Instant;
 
 use anyhow::{Context, Result};
 use clap::Parser;
+use evaluator::commands::{
+    add_remembered_rows, score_predictions, write_predictions, CommandOptions, PredictRequest,
+};
 use evaluator::datasets::{
     default_datasets, load_dataset, parse_user_dataset, remember_datasets, remembered_datasets,
     validation_datasets, DatasetSpec,
@@ -27,9 +30,14 @@ use indicatif::{ProgressBar, ProgressStyle};
   evaluator --methods seqransac@net-flow --force    recompute one row
   evaluator --dataset lamps=datasets/lamps --methods net,seqransac@net-flow   a user's dataset
   evaluator --methods net,net-iter --iterations --limit 50   Table 4 on 50 pairs
-  evaluator --list                                  the registered rows and datasets"
+  evaluator --list                                  the registered rows and datasets
+  evaluator score --dataset sf2f --predictions mine.mcap --name mine   a method run elsewhere
+  evaluator predict --method net --dataset sf2f --out net.mcap          a row's predictions",
+    args_conflicts_with_subcommands = true
 )]
 struct Args {
+    #[command(subcommand)]
+    command: Option<Command>,
     /// Every registered method on every default dataset.
     #[arg(long)]
     all: bool,
@@ -69,6 +77,63 @@ struct Args {
     /// List the registered rows and datasets, then exit.
     #[arg(long)]
     list: bool,
+}
+
+#[derive(clap::Subcommand, Debug)]
+enum Command {
+    /// Score a prediction file (docs/FORMAT.md, "Prediction files") written by any program,
+    /// e.g. the Python package's PredictionWriter, and add it to every board as an external
+    /// row. Checks the file against the dataset first; a refused file changes no report.
+    Score {
+        /// The dataset the file was made for: a name (see `evaluator --list`) or a dataset
+        /// folder.
+        #[arg(long)]
+        dataset: String,
+        /// The prediction file.
+        #[arg(long)]
+        predictions: PathBuf,
+        /// The row's name on the boards (default: the method named in the file's header).
+        #[arg(long)]
+        name: Option<String>,
+        #[command(flatten)]
+        common: Common,
+    },
+    /// Write any row's predictions on a dataset as a prediction file (the format `score`
+    /// reads), to compare or share them.
+    Predict {
+        /// The row (see `evaluator --list`).
+        #[arg(long)]
+        method: String,
+        /// The dataset: a name or a dataset folder.
+        #[arg(long)]
+        dataset: String,
+        /// The prediction file to write.
+        #[arg(long)]
+        out: PathBuf,
+        /// Only the first N pairs of the dataset.
+        #[arg(long, value_name = "N")]
+        limit: Option<usize>,
+        #[command(flatten)]
+        common: Common,
+    },
+}
+
+/// CommandOptions and weights shared by the subcommands.
+#[derive(clap::Args, Debug)]
+struct Common {
+    /// Folder of the datasets (each in <root>/<name>).
+    #[arg(long, default_value = "datasets")]
+    datasets_root: PathBuf,
+    /// Folder of the reports.
+    #[arg(long, default_value = "reports")]
+    reports: PathBuf,
+    /// The network's weights folder (config.toml and model.bpk).
+    #[arg(long, default_value = DEFAULT_WEIGHTS)]
+    weights: PathBuf,
+    /// Pairs per dataset in the segmentation gallery (as given to the runs already in the
+    /// reports, whose rows otherwise leave the boards).
+    #[arg(long, default_value_t = 3)]
+    gallery_pairs: usize,
 }
 
 /// indicatif bars: one for dataset generation, one per row and dataset.
@@ -122,15 +187,111 @@ impl Progress for Bars {
     }
 }
 
+/// The default datasets, then the user datasets remembered in `reports` whose folders exist.
+fn known_datasets(reports: &Path, datasets_root: &Path) -> Vec<DatasetSpec> {
+    let mut specs = default_datasets();
+    for spec in remembered_datasets(reports) {
+        if spec.dir(datasets_root).join(pairs::dataset::MANIFEST_FILE).exists()
+            && !specs.iter().any(|s| s.name == spec.name)
+        {
+            specs.push(spec);
+        }
+    }
+    specs
+}
+
+fn registry(weights: &Path) -> Result<evaluator::registry::Registry> {
+    standard_registry(weights)
+        .with_context(|| format!("building the method registry (weights {})", weights.display()))
+}
+
+fn run_command(command: Command) -> Result<()> {
+    let bars = Bars { bar: Mutex::new(None) };
+    let started = Instant::now();
+    match command {
+        Command::Score { dataset, predictions, name, common } => {
+            let registry = registry(&common.weights)?;
+            let specs = known_datasets(&common.reports, &common.datasets_root);
+            let setup = CommandOptions {
+                datasets_root: common.datasets_root,
+                reports: common.reports,
+                gallery_pairs: common.gallery_pairs,
+            };
+            let (row, summary) = score_predictions(
+                &registry,
+                &specs,
+                &dataset,
+                &predictions,
+                name.as_deref(),
+                &setup,
+                &bars,
+            )
+            .with_context(|| format!("scoring {} on {dataset}", predictions.display()))?;
+            print_row(&summary.reports, &row);
+            eprintln!(
+                "scored {} as {row} in {:.1} s; wrote {}/LEADERBOARD.md",
+                predictions.display(),
+                started.elapsed().as_secs_f64(),
+                summary.reports.display()
+            );
+        }
+        Command::Predict { method, dataset, out, limit, common } => {
+            let mut registry = registry(&common.weights)?;
+            add_remembered_rows(&mut registry, &common.reports);
+            let specs = known_datasets(&common.reports, &common.datasets_root);
+            let setup = CommandOptions {
+                datasets_root: common.datasets_root,
+                reports: common.reports,
+                gallery_pairs: common.gallery_pairs,
+            };
+            let request = PredictRequest { dataset, row: method, out, limit };
+            let (pairs, failed) = write_predictions(&registry, &specs, &request, &setup, &bars)
+                .with_context(|| {
+                    format!("writing {}'s predictions on {}", request.row, request.dataset)
+                })?;
+            eprintln!(
+                "wrote {} ({pairs} pairs, {failed} failed) in {:.1} s",
+                request.out.display(),
+                started.elapsed().as_secs_f64()
+            );
+        }
+    }
+    Ok(())
+}
+
+/// Prints a row's lines of the flow and segmentation boards.
+fn print_row(reports: &Path, row: &str) {
+    for (board, columns) in [
+        ("leaderboard_flow.csv", &["epe", "pcc_005", "pcc_010"][..]),
+        ("leaderboard_seg.csv", &["ri", "iou", "pairs", "failed"][..]),
+    ] {
+        let Ok(mut reader) = csv::Reader::from_path(reports.join(board)) else { continue };
+        let Ok(header) = reader.headers().cloned() else { continue };
+        let at = |name: &str| header.iter().position(|h| h == name);
+        for record in reader.records().flatten() {
+            if at("method").and_then(|i| record.get(i)) != Some(row) {
+                continue;
+            }
+            let cells: Vec<String> = std::iter::once("dataset")
+                .chain(columns.iter().copied())
+                .filter_map(|c| Some(format!("{c} {}", record.get(at(c)?)?)))
+                .collect();
+            println!("{row}: {}", cells.join(", "));
+        }
+    }
+}
+
 fn run(args: Args) -> Result<()> {
-    let registry = standard_registry(&args.weights).with_context(|| {
-        format!("building the method registry (weights {})", args.weights.display())
-    })?;
+    if let Some(command) = args.command {
+        return run_command(command);
+    }
+    let mut registry = registry(&args.weights)?;
     let mut specs = default_datasets();
     let limited = match args.limit {
         Some(n) => args.reports.join(format!("limit-{n}")),
         None => args.reports.clone(),
     };
+    add_remembered_rows(&mut registry, &limited);
     // Datasets scored into these reports before stay in the boards while their folders are
     // there (they are not rerun unless named with --datasets).
     let remembered: Vec<DatasetSpec> = remembered_datasets(&limited)

@@ -6,15 +6,19 @@
 //! full-dataset reports alone.
 
 use std::path::PathBuf;
+use std::sync::Arc;
+
+use pairs::Prediction;
+use rayon::prelude::*;
 
 use crate::datasets::{ensure_dataset, load_dataset, DatasetSpec, LoadedDataset};
 use crate::error::EvalError;
 use crate::gallery::{write_picture, GalleryPicture};
 use crate::leaderboard::{Leaderboards, Scored};
 use crate::plots::write_pcc_plots;
-use crate::registry::{Board, Entry, Registry};
+use crate::registry::{Board, Entry, Registry, Runner};
 use crate::report::write_report;
-use crate::run::{cached_run, run_entry, FlowCache, RunOptions, RunResult};
+use crate::run::{cached_run, predict_pair, run_entry, FlowCache, RunOptions, RunResult};
 use crate::tuning::{cached_sweep, sweep_key, tune, Sweep};
 
 /// What to evaluate and where.
@@ -147,6 +151,9 @@ pub fn evaluate(
                 .collect(),
         };
         for (e, entry) in entries.iter().enumerate() {
+            if !entry.runs_on(&dataset.name) {
+                continue;
+            }
             if !chosen || !selected.iter().any(|s| s.name == entry.name) {
                 if let Some(result) = cached_run(entry, dataset, &run_options) {
                     results.push((d, e, result));
@@ -183,6 +190,66 @@ pub fn evaluate(
         sweeps.into_iter().filter(|s| scored.iter().any(|r| r.entry.name == s.row)).collect();
     write_report(&reports, &boards, &gallery, &sweeps)?;
     Ok(Summary { boards, fresh, cached, failed, reports, sweeps })
+}
+
+/// Every prediction of row `row` on the dataset `options.datasets[0]` (made when missing),
+/// in the dataset's pair order, as the leaderboards would score them: a tuned row with its
+/// chosen parameters (tuned now unless its sweep is cached), a segmenter on its flow
+/// source's flow. A pair the row fails on has the reason instead.
+pub fn predict_row(
+    registry: &Registry,
+    specs: &[DatasetSpec],
+    options: &Options,
+    row: &str,
+    progress: &dyn Progress,
+) -> Result<RowPredictions, EvalError> {
+    let name = options.datasets.first().cloned().unwrap_or_default();
+    let spec = specs.iter().find(|s| s.name == name).ok_or_else(|| EvalError::Unknown {
+        what: "dataset",
+        name: name.clone(),
+        known: specs.iter().map(|s| s.name.as_str()).collect::<Vec<_>>().join(", "),
+    })?;
+    ensure_dataset(spec, &options.datasets_root, &|m| progress.notice(m), |done, total| {
+        progress.generating(&spec.name, done, total)
+    })?;
+    let dataset = load_dataset(&spec.name, &spec.dir(&options.datasets_root), options.limit)?;
+    let selected = registry.select(&[row.to_owned()])?;
+    let flows = FlowCache::default();
+    let (entries, _) =
+        resolve_tuning(registry.entries(), &selected, true, options, &flows, progress)?;
+    let entry = entries.into_iter().find(|e| e.name == row).expect("selected above");
+    let source_flows = match &entry.runner {
+        Runner::Segmenter { flow, .. } => Some(flows.get(flow, &dataset)),
+        _ => None,
+    };
+    let external = match &entry.runner {
+        Runner::External(files) => Some(Runner::Method(Arc::new(files.load(row, &dataset)?))),
+        _ => None,
+    };
+    let runner = external.as_ref().unwrap_or(&entry.runner);
+    progress.start(row, &dataset.name, dataset.pairs.len() as u64);
+    let predictions = dataset
+        .pairs
+        .par_iter()
+        .enumerate()
+        .map(|(i, pair)| {
+            let prediction = predict_pair(runner, pair, source_flows.as_ref().map(|f| &f[i]));
+            progress.tick();
+            (pair.id().to_owned(), prediction)
+        })
+        .collect();
+    progress.finish(row, &dataset.name, false);
+    Ok(RowPredictions { fingerprint: entry.fingerprint_for(&dataset.name), dataset, predictions })
+}
+
+/// What [`predict_row`] returns.
+pub struct RowPredictions {
+    /// The row's fingerprint (its code, parameters and weights).
+    pub fingerprint: String,
+    /// The dataset predicted.
+    pub dataset: LoadedDataset,
+    /// Each pair's id and prediction (or why it has none), in the dataset's order.
+    pub predictions: Vec<(String, Result<Prediction, String>)>,
 }
 
 /// The rows with every tuned row's chosen parameters in place: a selected tuned row is tuned

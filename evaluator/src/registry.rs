@@ -8,6 +8,7 @@ use std::sync::Arc;
 use pairs::{Method, Segmenter};
 
 use crate::error::EvalError;
+use crate::external::{ExternalFiles, EXTERNAL};
 use crate::tuning::Grid;
 
 /// Where a segmenter's input flow comes from.
@@ -42,6 +43,9 @@ pub enum Runner {
     Oracle,
     /// A whole method on the pair.
     Method(Arc<dyn Method>),
+    /// Predictions read from a prediction file per dataset ([`crate::external`]): a method
+    /// that ran outside the evaluator.
+    External(Arc<ExternalFiles>),
     /// A segmenter on a flow source's flow.
     Segmenter {
         /// The segmenter.
@@ -83,13 +87,32 @@ pub struct Entry {
 }
 
 impl Entry {
-    /// The `flow_source` column: `gt` for the oracle, `own` for whole methods, else the
-    /// source's name.
+    /// The `flow_source` column: `gt` for the oracle, `own` for whole methods, `external` for
+    /// rows scored from prediction files, else the source's name.
     pub fn flow_source(&self) -> String {
         match &self.runner {
             Runner::Oracle => "gt".into(),
             Runner::Method(_) => "own".into(),
+            Runner::External(_) => EXTERNAL.into(),
             Runner::Segmenter { flow, .. } => flow.name(),
+        }
+    }
+
+    /// The fingerprint of the row's results on `dataset`: [`Entry::fingerprint`], or for an
+    /// external row its file's for that dataset.
+    pub fn fingerprint_for(&self, dataset: &str) -> String {
+        match &self.runner {
+            Runner::External(files) => files.fingerprint(dataset).unwrap_or_default(),
+            _ => self.fingerprint.clone(),
+        }
+    }
+
+    /// Whether the row has results on `dataset`: every row but an external one without a
+    /// prediction file for it.
+    pub fn runs_on(&self, dataset: &str) -> bool {
+        match &self.runner {
+            Runner::External(files) => files.files.contains_key(dataset),
+            _ => true,
         }
     }
 
@@ -154,6 +177,18 @@ impl Registry {
         let runner = Runner::Segmenter { segmenter, flow };
         let fingerprint = fingerprint.into();
         self.push(Entry { name, runner, board, fingerprint, grid: None, oracle })
+    }
+
+    /// Adds an external row `name` scored from `files` (both boards, `external` flow source).
+    pub fn external(&mut self, name: &str, files: ExternalFiles) -> &mut Self {
+        self.push(Entry {
+            name: name.to_owned(),
+            runner: Runner::External(Arc::new(files)),
+            board: Board::Both,
+            fingerprint: format!("external {}", env!("SOURCE_HASH_SCORING")),
+            grid: None,
+            oracle: false,
+        })
     }
 
     /// Adds a row whose parameters are cross-validated over `grid` before it runs: `name`

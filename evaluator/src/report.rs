@@ -10,6 +10,7 @@ use std::path::Path;
 use polars::prelude::{AnyValue, DataFrame};
 
 use crate::error::EvalError;
+use crate::external::EXTERNAL;
 use crate::files::replace_file;
 use crate::gallery::GalleryPicture;
 use crate::leaderboard::Leaderboards;
@@ -127,6 +128,17 @@ pub fn write_report(
          the paper's own data, for orientation only: our datasets are generated, not the \
          paper's.\n\n## Flow\n\n",
     );
+    let external = [&boards.flow, &boards.seg].iter().any(|frame| {
+        cells(frame).iter().any(|row| row.get(2).map(String::as_str) == Some(EXTERNAL))
+    });
+    if external {
+        out.insert_str(
+            out.len() - "## Flow\n\n".len(),
+            "Rows whose `flow_source` is `external` were scored from prediction files that \
+             another program wrote (`evaluator score`; docs/FORMAT.md, \"Prediction files\"), \
+             by the same code as every other row; `external_rows.json` lists their files.\n\n",
+        );
+    }
     let (head, rows) = with_paper(&boards.flow, &[Metric::Epe]);
     table(&mut out, &head, &rows);
     out.push_str("## Segmentation\n\n");

@@ -128,9 +128,11 @@ pub fn predict_pair(
                 motions: truth.motions.clone(),
                 corr_mask: None,
                 segment_probs: None,
+                joints: None,
             })
         }
         Runner::Method(m) => guarded(|| m.predict(pair.input()).map_err(|e| e.to_string())),
+        Runner::External(_) => Err("an external row's file is read by run_entry".into()),
         Runner::Segmenter { segmenter, flow: source } => {
             let flow = flow
                 .ok_or_else(|| format!("no flow from {}", source.name()))?
@@ -171,7 +173,7 @@ pub fn cached_run(
     let path = runs_path(&options.runs, &dataset.name, &entry.name);
     let meta = read_meta(&path.with_extension("json")).filter(|m| {
         m.version == RUNS_VERSION
-            && m.fingerprint == entry.fingerprint
+            && m.fingerprint == entry.fingerprint_for(&dataset.name)
             && m.dataset == dataset.content_hash
     })?;
     let table = read_records(&path).ok().filter(|t| t.rows.len() == dataset.pairs.len())?;
@@ -201,6 +203,14 @@ pub fn run_entry(
         Runner::Segmenter { flow, .. } => Some(flows.get(flow, dataset)),
         _ => None,
     };
+    // An external row's file is read and checked against the dataset before any pair runs.
+    let external = match &entry.runner {
+        Runner::External(files) => {
+            Some(Runner::Method(Arc::new(files.load(&entry.name, dataset)?)))
+        }
+        _ => None,
+    };
+    let runner = external.as_ref().unwrap_or(&entry.runner);
     memory::reset_peak();
     type Outcome = (PairRecord, Option<Vec<u32>>, Result<Vec<Vector3>, String>);
     let outcomes: Vec<Outcome> = dataset
@@ -210,7 +220,7 @@ pub fn run_entry(
         .map(|(i, pair)| {
             let flow = source_flows.as_ref().map(|f| &f[i]);
             let started = Instant::now();
-            let prediction = predict_pair(&entry.runner, pair, flow);
+            let prediction = predict_pair(runner, pair, flow);
             let ms = started.elapsed().as_secs_f64() * 1e3;
             let own_flow = match &prediction {
                 Ok(p) => p.flow.clone().ok_or_else(|| format!("{} reports no flow", entry.name)),
@@ -253,7 +263,7 @@ pub fn run_entry(
     }
     let meta = RunMeta {
         version: RUNS_VERSION,
-        fingerprint: entry.fingerprint.clone(),
+        fingerprint: entry.fingerprint_for(&dataset.name),
         dataset: dataset.content_hash.clone(),
         peak_mib: memory::peak_mib(),
         gallery,

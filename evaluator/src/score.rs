@@ -2,8 +2,8 @@
 //! ground truth with `pairs::metrics` (flow, segmentation of P and Q, matched motions).
 
 use pairs::metrics::{
-    end_point_errors, joint_errors, matched_iou, motion_errors, pcc, pcc_at, pcc_auc, rand_index,
-    segment_count, JointError, MetricError, PCC_THRESHOLDS,
+    end_point_errors, joint_errors, joint_errors_of, matched_iou, motion_errors, pcc, pcc_at,
+    pcc_auc, rand_index, segment_count, JointError, MetricError, PCC_THRESHOLDS,
 };
 use pairs::{GroundTruth, PairInput, Prediction};
 
@@ -63,6 +63,14 @@ pub fn check_prediction(prediction: &Prediction, input: &PairInput) -> Result<()
     if let Some(index) = prediction.motions.iter().position(|m| !m.is_finite()) {
         return Err(Malformed::NotFinite { what: "motions", index });
     }
+    let joint_finite = |j: &Option<pairs::joint_estimate::JointEstimate>| {
+        j.as_ref().is_none_or(|j| {
+            j.axis.iter().chain(j.pivot.iter()).chain([&j.value]).all(|v| v.is_finite())
+        })
+    };
+    if let Some(index) = prediction.joints.iter().flatten().position(|j| !joint_finite(j)) {
+        return Err(Malformed::NotFinite { what: "joints", index });
+    }
     Ok(())
 }
 
@@ -121,8 +129,9 @@ pub struct PairScore {
     pub rotation_deg: Vec<f64>,
     /// Translation errors of the matched parts' motions.
     pub translation: Vec<f64>,
-    /// Every ground-truth joint scored against the joint estimated from the matched
-    /// segment's motion (`pairs::metrics::joints`); empty when the prediction has no motions.
+    /// Every ground-truth joint scored against the matched segment's joint: the method's own
+    /// when it gives joints, else the one estimated from the segment's motion
+    /// (`pairs::metrics::joints`); empty when the prediction has neither.
     pub joints: Vec<JointError>,
 }
 
@@ -158,7 +167,9 @@ pub fn score_pair(
         })
     };
     let motion = motion_errors(&matching, &prediction.motions, &truth.motions);
-    let joints = if prediction.motions.is_empty() {
+    let joints = if let Some(estimates) = &prediction.joints {
+        joint_errors_of(estimates, &matching, &truth.joints, input.p.normalisation.scale)
+    } else if prediction.motions.is_empty() {
         Vec::new()
     } else {
         joint_errors(

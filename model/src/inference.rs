@@ -188,6 +188,7 @@ impl PartNet {
                     motions,
                     corr_mask: Some(mask),
                     segment_probs: Some(seg.probs),
+                    joints: None,
                 },
                 change,
                 residual: residual_norm,

@@ -151,6 +151,7 @@ impl PartNet {
             motions: seg.motions,
             corr_mask: None,
             segment_probs: Some(seg.probs),
+            joints: None,
         })
     }
 }

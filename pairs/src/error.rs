@@ -170,3 +170,64 @@ impl DatasetError {
         move |source| Self::Mcap { path: path.into(), source }
     }
 }
+
+/// Failure to read or write a prediction file (docs/FORMAT.md, "Prediction files"). A pair
+/// whose record decodes but is not a valid prediction is not one of these: it is that
+/// pair's failure ([`crate::predictions::ReadPrediction::prediction`]).
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum PredictionsError {
+    /// An operating-system error on the file.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// The cause.
+        source: std::io::Error,
+    },
+    /// The MCAP container is malformed, truncated or fails its checksums.
+    #[error("{path}: not a readable MCAP file (truncated or corrupt?): {source}")]
+    Mcap {
+        /// The file.
+        path: PathBuf,
+        /// The cause.
+        source: mcap::McapError,
+    },
+    /// The header or a channel is not the documented one, or the header is missing or not
+    /// first.
+    #[error("{path}: not a prediction file of this format: {reason}")]
+    Schema {
+        /// The file.
+        path: PathBuf,
+        /// What differs from docs/FORMAT.md.
+        reason: String,
+    },
+    /// A `/prediction` message is not CBOR or has no text `id`.
+    #[error("{path}: /prediction message {message}: cannot decode: {reason}")]
+    Decode {
+        /// The file.
+        path: PathBuf,
+        /// Zero-based message number on `/prediction`.
+        message: u64,
+        /// The decoder's complaint.
+        reason: String,
+    },
+    /// Two records for one pair.
+    #[error("{path}: pair {id} has two predictions")]
+    Duplicate {
+        /// The file.
+        path: PathBuf,
+        /// The pair.
+        id: String,
+    },
+}
+
+impl PredictionsError {
+    pub(crate) fn io(path: &Path) -> impl FnOnce(std::io::Error) -> Self + '_ {
+        move |source| Self::Io { path: path.into(), source }
+    }
+
+    pub(crate) fn mcap(path: &Path) -> impl FnOnce(mcap::McapError) -> Self + '_ {
+        move |source| Self::Mcap { path: path.into(), source }
+    }
+}

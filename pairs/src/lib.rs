@@ -6,7 +6,8 @@
 //! its own (bounding box centred at the origin, diagonal 1) and keeps its [`Normalisation`].
 //! A [`Method`] maps a [`PairInput`] to a [`Prediction`]. The [`transform`] module holds the
 //! motion math every crate shares, and [`dataset`] reads and writes dataset folders
-//! (`pairs.mcap`, `index.csv`, `manifest.json`; see docs/FORMAT.md).
+//! (`pairs.mcap`, `index.csv`, `manifest.json`; see docs/FORMAT.md), and [`predictions`]
+//! reads and writes one method's predictions for a dataset (`predictions.mcap`).
 //!
 //! ```
 //! use pairs::{synthetic, Pair};
@@ -32,6 +33,7 @@
 pub mod cloud;
 pub mod dataset;
 pub mod error;
+pub mod fuzz;
 pub mod ground_truth;
 pub mod joint_estimate;
 pub mod joints;
@@ -40,6 +42,7 @@ pub mod method;
 pub mod metrics;
 pub mod pair;
 pub mod parts;
+pub mod predictions;
 pub mod scan;
 pub mod screw;
 pub mod segments;
@@ -48,7 +51,7 @@ pub mod transform;
 mod validate;
 
 pub use cloud::{Cloud, Normalisation};
-pub use error::{DatasetError, PairError};
+pub use error::{DatasetError, PairError, PredictionsError};
 pub use ground_truth::GroundTruth;
 pub use joints::{JointKind, JointTruth};
 pub use method::{Method, MethodError, Prediction, Segmenter};

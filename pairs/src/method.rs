@@ -1,6 +1,7 @@
 //! What a method sees (`PairInput`), what it returns (`Prediction`) and the `Method` trait that
 //! baselines and the network implement.
 
+use crate::joint_estimate::JointEstimate;
 use crate::math::{Real, Vector3};
 use crate::pair::PairInput;
 use crate::transform::Similarity;
@@ -20,6 +21,10 @@ pub struct Prediction {
     pub corr_mask: Option<Vec<Real>>,
     /// Soft segment probabilities on P, row per point, if the method has them.
     pub segment_probs: Option<Vec<Vec<Real>>>,
+    /// The joint that moves each segment (`None` for a segment without one), P's normalised
+    /// frame, if the method estimates joints itself; otherwise the scorer estimates them
+    /// from `motions` ([`crate::joint_estimate`]).
+    pub joints: Option<Vec<Option<JointEstimate>>>,
 }
 
 /// Why a method could not produce a prediction for a pair.

@@ -86,6 +86,7 @@ pub fn complete_prediction<T: Copy + PartialEq>(
         motions,
         corr_mask: None,
         segment_probs: None,
+        joints: None,
     }
 }
 

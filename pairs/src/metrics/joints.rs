@@ -11,7 +11,8 @@
 //!   (degrees, revolute) or the distance slid (P's normalised units, prismatic) between
 //!   P's and Q's states.
 //!
-//! Predicted joints come from the segments' motions through
+//! Predicted joints are the method's own when it gives them ([`joint_errors_of`], e.g. from
+//! a prediction file) and otherwise come from the segments' motions through
 //! [`crate::joint_estimate::estimate_joints`] (each segment relative to the largest one).
 
 use crate::joint_estimate::{estimate_joints, JointEstimate, JointParams};
@@ -127,6 +128,19 @@ pub fn joint_errors(
     scale_p: f32,
 ) -> Vec<JointError> {
     let estimates = estimate_joints(points_p, segments, motions, &JointParams::default());
+    joint_errors_of(&estimates, matching, truth, scale_p)
+}
+
+/// Every ground-truth joint scored against `estimates[s]`, the joint a method gives segment
+/// `s` (its own estimate, or [`estimate_joints`]'), where `s` is the segment matched to the
+/// joint's part; a joint whose part has no matched segment, or whose segment has no joint,
+/// is scored as missed.
+pub fn joint_errors_of(
+    estimates: &[Option<JointEstimate>],
+    matching: &PartMatching,
+    truth: &[JointTruth],
+    scale_p: f32,
+) -> Vec<JointError> {
     truth
         .iter()
         .map(|joint| {
