@@ -1,0 +1,39 @@
+"""Read part-induction datasets and write prediction files for the benchmark, from Python.
+
+The formats are docs/FORMAT.md. :func:`open_dataset` streams a dataset's pairs as numpy
+arrays, :class:`PredictionWriter` writes a method's predictions for ``evaluator score``, and
+``part_induction.torch`` (which needs PyTorch; importing this package does not import it)
+wraps a dataset for a ``DataLoader``.
+"""
+
+from .dataset import (
+    Dataset,
+    DatasetError,
+    Joint,
+    Motions,
+    Pair,
+    PairInput,
+    collate_numpy,
+    open_dataset,
+)
+from .predictions import (
+    PredictedJoint,
+    PredictionError,
+    PredictionWriter,
+    read_predictions,
+)
+
+__all__ = [
+    "Dataset",
+    "DatasetError",
+    "Joint",
+    "Motions",
+    "Pair",
+    "PairInput",
+    "PredictedJoint",
+    "PredictionError",
+    "PredictionWriter",
+    "collate_numpy",
+    "open_dataset",
+    "read_predictions",
+]

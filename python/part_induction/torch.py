@@ -1,0 +1,111 @@
+"""PyTorch access to a dataset: a random-access ``torch.utils.data.Dataset`` of pairs and a
+collate function for ``DataLoader``. Importing this module imports torch; the rest of the
+package never does.
+
+The batching itself is :func:`part_induction.dataset.collate_numpy` (plain numpy); this module
+only turns its arrays into tensors.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Dict, List, Optional, Sequence
+
+import cbor2
+import numpy as np
+import torch
+from torch.utils.data import Dataset as _TorchDataset
+
+from .dataset import (
+    PAIR_TOPIC,
+    PAIRS_FILE,
+    Dataset,
+    DatasetError,
+    Pair,
+    PathLike,
+    collate_numpy,
+    decode_pair,
+    iter_messages,
+    subsample_pair,
+)
+
+
+class PairDataset(_TorchDataset):
+    """The pairs of a dataset folder, by index.
+
+    On first access it reads the raw CBOR bytes of every ``/pair`` message into memory (one
+    pass over ``pairs.mcap``; about 25 KB per pair of two 512-point clouds, images not
+    included) and decodes one pair per ``__getitem__``. Each ``DataLoader`` worker that
+    starts before the first access reads the file once for itself.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The dataset folder.
+    points : int, optional
+        When given, each cloud is resampled to exactly this many points (a random subset, or
+        every point plus random repeats for a smaller cloud) so that batches stack; the
+        ground truth is subset with it and ``corr_index`` then names the kept counterpart in
+        Q, or -1 (``corr_mask`` False) where it was dropped. None keeps the clouds as they
+        are (``collate_pairs`` pads unequal sizes).
+    seed : int, optional
+        Seeds the resampling of item ``i`` with ``(seed, i)``, so an item is the same every
+        time; None draws a fresh subset on every access.
+
+    Examples
+    --------
+    >>> from torch.utils.data import DataLoader
+    >>> loader = DataLoader(PairDataset("datasets/sf2f"), batch_size=16, shuffle=True,
+    ...                     collate_fn=collate_pairs)
+    >>> batch = next(iter(loader))
+    >>> batch["p"].shape
+    torch.Size([16, 512, 3])
+    """
+
+    def __init__(self, path: PathLike, points: Optional[int] = None, seed: Optional[int] = 0):
+        if points is not None and points < 1:
+            raise ValueError(f"points must be positive, not {points}")
+        self.dataset = Dataset(path)
+        self.points = points
+        self.seed = seed
+        self._messages: Optional[List[bytes]] = None
+
+    def __len__(self) -> int:
+        return len(self.dataset)
+
+    def __getitem__(self, index: int) -> Pair:
+        if index < 0:
+            index += len(self)
+        if not 0 <= index < len(self):
+            raise IndexError(f"pair {index} of a dataset of {len(self)}")
+        where = f"{self.dataset.path / PAIRS_FILE}: {PAIR_TOPIC} message {index}"
+        try:
+            record = cbor2.loads(self._raw()[index])
+        except Exception as e:  # cbor2 raises several types; all mean "not our record"
+            raise DatasetError(f"{where}: not valid CBOR: {e}") from e
+        pair = decode_pair(record, where)
+        if self.points is not None:
+            rng = np.random.default_rng(None if self.seed is None else (self.seed, index))
+            pair = subsample_pair(pair, self.points, rng)
+        return pair
+
+    def _raw(self) -> List[bytes]:
+        if self._messages is None:
+            path = self.dataset.path / PAIRS_FILE
+            messages = [data for _, data in iter_messages(path)]
+            if len(messages) != len(self.dataset):
+                raise DatasetError(
+                    f"{path}: holds {len(messages)} pairs but the manifest announces "
+                    f"{len(self.dataset)} (truncated?)"
+                )
+            self._messages = messages
+        return self._messages
+
+
+def collate_pairs(batch: Sequence[Pair]) -> Dict[str, Any]:
+    """``collate_fn`` for a ``DataLoader`` over :class:`PairDataset`: the arrays of
+    :func:`part_induction.dataset.collate_numpy` as tensors (same keys, shapes and dtypes;
+    ``id`` and ``kind`` stay lists of str)."""
+    return {
+        key: torch.from_numpy(value) if isinstance(value, np.ndarray) else value
+        for key, value in collate_numpy(batch).items()
+    }

@@ -1,0 +1,102 @@
+"""A prediction file written from Python, scored by the Rust evaluator; and the README's
+example method."""
+
+from __future__ import annotations
+
+import csv
+import subprocess
+import sys
+from pathlib import Path
+from typing import Callable, Dict, List
+
+import numpy as np
+import pytest
+
+from part_induction import PredictionWriter, open_dataset, read_predictions
+
+
+def rows(path: Path, method: str) -> List[Dict[str, str]]:
+    with open(path, newline="") as f:
+        return [row for row in csv.DictReader(f) if row["method"] == method]
+
+
+@pytest.mark.evaluator
+def test_the_ground_truth_written_from_python_scores_perfectly(
+    sf2f_dir: Path, tmp_path: Path, cargo: Callable[..., str]
+) -> None:
+    dataset = open_dataset(sf2f_dir)
+    predictions = tmp_path / "gt.mcap"
+    with PredictionWriter(predictions, "gt-py", dataset, method_version="test") as writer:
+        for pair in dataset:
+            writer.write(
+                pair.id,
+                pair.part_p,
+                segments_q=pair.part_q,
+                flow=pair.flow,
+                motions=(pair.motions.rotations, pair.motions.translations, pair.scale),
+            )
+    reports = tmp_path / "reports"
+    score = ["score", "--dataset", str(sf2f_dir), "--predictions", str(predictions)]
+    score += ["--name", "gt-py", "--reports", str(reports)]
+    cargo("run", "-q", "-p", "evaluator", "--", *score)
+    (flow,) = rows(reports / "leaderboard_flow.csv", "gt-py")
+    assert flow["flow_source"] == "external"
+    assert float(flow["epe"]) == pytest.approx(0.0, abs=1e-6)
+    (seg,) = rows(reports / "leaderboard_seg.csv", "gt-py")
+    assert float(seg["ri"]) == pytest.approx(1.0, abs=1e-6)
+    assert float(seg["iou"]) == pytest.approx(1.0, abs=1e-6)
+    for row in (flow, seg):
+        if "pairs" in row:
+            assert int(row["pairs"]) == len(dataset)
+        if "failed" in row:
+            assert int(row["failed"]) == 0
+
+
+@pytest.mark.evaluator
+def test_predictions_written_by_the_evaluator_read_back(
+    sf2f_dir: Path, tmp_path: Path, cargo: Callable[..., str]
+) -> None:
+    out = tmp_path / "gt.mcap"
+    predict = ["predict", "--method", "gt", "--dataset", str(sf2f_dir), "--out", str(out)]
+    cargo("run", "-q", "-p", "evaluator", "--", *predict)
+    dataset = open_dataset(sf2f_dir)
+    header, predictions = read_predictions(out)
+    assert (header["method"], header["dataset"]) == ("gt", dataset.content_hash)
+    by_id = {p["id"]: p for p in predictions}
+    pairs = list(dataset)
+    assert sorted(by_id) == sorted(p.id for p in pairs)
+    for pair in pairs:
+        prediction = by_id[pair.id]
+        np.testing.assert_array_equal(prediction["segments_p"], pair.part_p)
+        np.testing.assert_array_equal(prediction["segments_q"], pair.part_q)
+        np.testing.assert_array_equal(prediction["flow"], pair.flow)
+        motions = prediction["motions"]
+        np.testing.assert_array_equal(motions["rotations"], pair.motions.rotations)
+        np.testing.assert_array_equal(motions["translations"], pair.motions.translations)
+        np.testing.assert_array_equal(motions["scales"], np.float32(pair.scale))
+
+
+def test_the_example_method_writes_one_prediction_per_pair(
+    sf2f_dir: Path, tmp_path: Path, python_env: Dict[str, str]
+) -> None:
+    out = tmp_path / "predictions.mcap"
+    example = Path(__file__).resolve().parents[1] / "examples" / "one_segment_nn.py"
+    command = [sys.executable, str(example), str(sf2f_dir), str(out)]
+    result = subprocess.run(command, env=python_env, stdout=subprocess.PIPE, text=True)
+    assert result.returncode == 0
+    assert result.stdout.strip() == f"wrote 15 predictions to {out}"
+    dataset = open_dataset(sf2f_dir)
+    header, predictions = read_predictions(out)
+    assert header["method"] == "one-segment-nn"
+    assert header["dataset"] == dataset.content_hash
+    by_id = {p["id"]: p for p in predictions}
+    pairs = list(dataset)
+    assert sorted(by_id) == sorted(p.id for p in pairs)
+    for pair in pairs:
+        prediction = by_id[pair.id]
+        assert (prediction["segments_p"] == 0).all() and len(prediction["segments_p"]) == 96
+        assert (prediction["segments_q"] == 0).all() and len(prediction["segments_q"]) == 96
+        moved = pair.p + prediction["flow"]
+        # Every moved point is a point of Q, and the nearest one.
+        distances = ((pair.p[:, None] - pair.q[None]) ** 2).sum(-1)
+        np.testing.assert_allclose(moved, pair.q[distances.argmin(1)], atol=1e-6)
