@@ -1,16 +1,13 @@
 //! `evaluator score` and `evaluator predict` as library calls: a prediction file scored onto
 //! the boards as an external row, and any row's predictions written as such a file.
 
-use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use pairs::predictions::{PredictionHeader, PredictionReader, PredictionRecord, PredictionWriter};
 
 use crate::datasets::{remember_datasets, validation_datasets, DatasetSpec};
 use crate::error::EvalError;
-use crate::external::{
-    dataset_hash, file_sha256, remember_rows, remembered_rows, ExternalFile, ExternalFiles,
-};
+use crate::external::{dataset_hash, file_sha256, remember_rows, remembered_rows, ExternalFile};
 use crate::pipeline::{evaluate, predict_row, Options, Progress, Summary};
 use crate::registry::{Registry, Runner};
 
@@ -67,26 +64,38 @@ pub fn resolve_dataset(
 }
 
 /// Adds the external rows remembered in `reports` whose files still exist, so that their
-/// cached runs stay on the boards.
-pub fn add_remembered_rows(registry: &mut Registry, reports: &Path) {
-    for (name, mut files) in remembered_rows(reports) {
+/// cached runs stay on the boards. Each file is hashed again: one that changed since it was
+/// scored no longer matches its cached run, and its row leaves the boards until it is scored
+/// again (`evaluator --all` runs an external row only when `--methods` names it).
+pub fn add_remembered_rows(registry: &mut Registry, reports: &Path) -> Result<(), EvalError> {
+    for (name, mut files) in remembered_rows(reports)? {
         files.files.retain(|_, f| f.path.exists());
+        for file in files.files.values_mut() {
+            file.sha256 = file_sha256(&file.path)?;
+        }
         if !files.files.is_empty() && !registry.entries().iter().any(|e| e.name == name) {
             registry.external(&name, files);
         }
     }
+    Ok(())
 }
 
-/// Whether `name` may name an external row: non-empty, no path separators, no `@` (which
-/// separates a segmenter from its flow source) and no `,` (which separates rows).
+/// Whether `name` may name an external row: a plain file name (no separators, no `@`, which
+/// separates a segmenter from its flow source, no `,`, which separates rows, nothing a
+/// Markdown table cell breaks on) that is not a built-in row's.
 fn check_row_name(name: &str, registry: &Registry) -> Result<(), String> {
-    if name.is_empty() || name.contains(['/', '\\', '@', ',']) || name.starts_with('.') {
-        return Err(format!("{name:?} cannot name a row (no '/', '\\', '@', ',' or leading '.')"));
+    let allowed = |c: char| c.is_ascii_alphanumeric() || "._+-".contains(c);
+    if name.is_empty() || !name.chars().all(allowed) || name.starts_with('.') {
+        return Err(format!(
+            "{name:?} cannot name a row: letters, digits, '.', '_', '+' and '-' only, not \
+             starting with '.'"
+        ));
     }
+    // Case-insensitively, as the runs files of rows are named after them.
     let builtin = registry
         .entries()
         .iter()
-        .any(|e| e.name == name && !matches!(e.runner, Runner::External(_)));
+        .any(|e| e.name.eq_ignore_ascii_case(name) && !matches!(e.runner, Runner::External(_)));
     if builtin {
         return Err(format!("{name} is a built-in row's name; choose another with --name"));
     }
@@ -112,14 +121,14 @@ pub fn score_predictions(
     let name = name.unwrap_or(&header.method).to_owned();
     check_row_name(&name, registry)
         .map_err(|message| EvalError::PredictionsMismatch { path: predictions.into(), message })?;
-    let mut rows = remembered_rows(&setup.reports);
+    let mut rows = remembered_rows(&setup.reports)?;
     let mut files = rows.remove(&name).unwrap_or_default();
     let path = std::fs::canonicalize(predictions)
         .map_err(|source| EvalError::Io { path: predictions.into(), source })?;
     let sha256 = file_sha256(&path)?;
     files.files.insert(spec.name.clone(), ExternalFile { path, sha256 });
     let mut registry = registry.clone();
-    add_remembered_rows(&mut registry, &setup.reports);
+    add_remembered_rows(&mut registry, &setup.reports)?;
     registry.external(&name, files.clone());
     let mut all_specs = specs.to_vec();
     if !all_specs.iter().any(|s| s.name == spec.name) {
@@ -197,9 +206,4 @@ pub fn write_predictions(
     }
     writer.finish()?;
     Ok((rows.predictions.len(), failed))
-}
-
-/// The external rows remembered in `reports`, for `--list`.
-pub fn external_rows(reports: &Path) -> BTreeMap<String, ExternalFiles> {
-    remembered_rows(reports)
 }

@@ -52,26 +52,43 @@ impl ExternalFiles {
     /// The fingerprint of the row's run on `dataset`: the file's hash and the scoring code.
     pub fn fingerprint(&self, dataset: &str) -> Option<String> {
         let file = self.files.get(dataset)?;
-        Some(format!("external {} {}", file.sha256, env!("SOURCE_HASH_SCORING")))
+        Some(format!(
+            "external {} pairs {} scoring {} lock {}",
+            file.sha256,
+            env!("SOURCE_HASH_PAIRS"),
+            env!("SOURCE_HASH_SCORING"),
+            env!("SOURCE_HASH_LOCK")
+        ))
     }
 
     /// The predictions for `dataset`, read and checked against it.
     pub fn load(&self, name: &str, dataset: &LoadedDataset) -> Result<FilePredictions, EvalError> {
         let file = self.files.get(&dataset.name).ok_or_else(|| EvalError::PredictionsMismatch {
-            path: PathBuf::new(),
-            message: format!("row {name} has no prediction file for dataset {}", dataset.name),
+            path: PathBuf::from(EXTERNAL_ROWS_FILE),
+            message: format!(
+                "row {name} has no prediction file for dataset {} (score one with `evaluator \
+                 score --dataset {} --predictions FILE --name {name}`)",
+                dataset.name, dataset.name
+            ),
         })?;
         load_predictions(name, &file.path, dataset)
     }
 }
 
-/// The external rows remembered in `reports` (row name → files), none when the file is
-/// missing or unreadable.
-pub fn remembered_rows(reports: &Path) -> BTreeMap<String, ExternalFiles> {
-    std::fs::read_to_string(reports.join(EXTERNAL_ROWS_FILE))
-        .ok()
-        .and_then(|text| serde_json::from_str(&text).ok())
-        .unwrap_or_default()
+/// The external rows remembered in `reports` (row name → files), none when there is no
+/// such file; an error when it cannot be read or parsed (so that it is never overwritten
+/// with less than it held).
+pub fn remembered_rows(reports: &Path) -> Result<BTreeMap<String, ExternalFiles>, EvalError> {
+    let path = reports.join(EXTERNAL_ROWS_FILE);
+    let text = match std::fs::read_to_string(&path) {
+        Ok(text) => text,
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(BTreeMap::new()),
+        Err(source) => return Err(EvalError::Io { path, source }),
+    };
+    serde_json::from_str(&text).map_err(|e| EvalError::Csv {
+        path,
+        message: format!("not a map of external rows ({e}); fix or delete it"),
+    })
 }
 
 /// Remembers `rows` in `reports`, replacing the file whole.
@@ -170,7 +187,8 @@ pub fn load_predictions(
     for read in reader {
         let read = read?;
         if !ids.contains(read.id.as_str()) {
-            // A limited load holds only the first pairs: the others are not an error.
+            // A limited load (`--limit`) holds only the first pairs of the dataset, whose
+            // content hash the header matched: a record of a later pair is skipped unchecked.
             if limited {
                 continue;
             }

@@ -237,7 +237,9 @@ fn run_command(command: Command) -> Result<()> {
         }
         Command::Predict { method, dataset, out, limit, common } => {
             let mut registry = registry(&common.weights)?;
-            add_remembered_rows(&mut registry, &common.reports);
+            add_remembered_rows(&mut registry, &common.reports).with_context(|| {
+                format!("reading the external rows in {}", common.reports.display())
+            })?;
             let specs = known_datasets(&common.reports, &common.datasets_root);
             let setup = CommandOptions {
                 datasets_root: common.datasets_root,
@@ -291,7 +293,8 @@ fn run(args: Args) -> Result<()> {
         Some(n) => args.reports.join(format!("limit-{n}")),
         None => args.reports.clone(),
     };
-    add_remembered_rows(&mut registry, &limited);
+    add_remembered_rows(&mut registry, &limited)
+        .with_context(|| format!("reading the external rows in {}", limited.display()))?;
     // Datasets scored into these reports before stay in the boards while their folders are
     // there (they are not rerun unless named with --datasets).
     let remembered: Vec<DatasetSpec> = remembered_datasets(&limited)

@@ -154,7 +154,11 @@ pub fn evaluate(
             if !entry.runs_on(&dataset.name) {
                 continue;
             }
-            if !chosen || !selected.iter().any(|s| s.name == entry.name) {
+            // An external row is scored by `evaluator score`; other runs take it from the
+            // cache unless `--methods` names it.
+            let external = matches!(entry.runner, Runner::External(_));
+            let named = options.methods.contains(&entry.name);
+            if !chosen || !selected.iter().any(|s| s.name == entry.name) || (external && !named) {
                 if let Some(result) = cached_run(entry, dataset, &run_options) {
                     results.push((d, e, result));
                 }

@@ -19,7 +19,8 @@ pub fn hash_files(base: &Path, paths: &[PathBuf]) -> String {
 }
 
 /// The evaluator's files whose code changes a row's per-pair numbers (`SOURCE_HASH_SCORING`).
-pub const SCORING: [&str; 5] = ["run.rs", "score.rs", "record.rs", "reference.rs", "tuning.rs"];
+pub const SCORING: [&str; 6] =
+    ["run.rs", "score.rs", "record.rs", "reference.rs", "tuning.rs", "external.rs"];
 
 #[cfg(test)]
 mod tests {

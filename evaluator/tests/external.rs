@@ -9,7 +9,9 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use baselines::SeqRansac;
-use evaluator::commands::{score_predictions, write_predictions, CommandOptions, PredictRequest};
+use evaluator::commands::{
+    add_remembered_rows, score_predictions, write_predictions, CommandOptions, PredictRequest,
+};
 use evaluator::datasets::DatasetSpec;
 use evaluator::external::file_sha256;
 use evaluator::pipeline::{evaluate, NoProgress, Options};
@@ -146,10 +148,22 @@ fn a_predicted_row_scored_from_its_file_reproduces_the_builtin_row() {
     assert!(report.contains("| tiny | mine | external |"), "{report}");
     assert!(report.contains("scored from prediction files"));
     let mut remembered = registry.clone();
-    evaluator::commands::add_remembered_rows(&mut remembered, &root.join("reports"));
+    add_remembered_rows(&mut remembered, &root.join("reports")).expect("readable");
+    // (An unnamed external row is taken from the cache and not counted as run.)
     let summary = evaluate_all(root, &remembered);
-    assert_eq!((summary.fresh, summary.cached), (0, 3));
+    assert_eq!((summary.fresh, summary.cached), (0, 2));
     assert_eq!(row(&seg, "mine")["iou"], e["iou"]);
+
+    // The file changes under the same name: its cached run no longer matches, and a plain
+    // run does not score it again (only `score`, or `--methods mine`, does), so the row
+    // leaves the boards instead of showing the old file's numbers.
+    let truth = predict(root, &registry, "gt");
+    std::fs::copy(&truth, &file).expect("copied");
+    let mut remembered = registry.clone();
+    add_remembered_rows(&mut remembered, &root.join("reports")).expect("readable");
+    let summary = evaluate_all(root, &remembered);
+    assert_eq!((summary.fresh, summary.cached), (0, 2));
+    assert!(!rows(&seg).iter().any(|r| r["method"] == "mine"));
 }
 
 #[test]
@@ -243,7 +257,9 @@ fn files_that_do_not_fit_the_dataset_are_refused_and_change_no_report() {
         (write("twice.mcap", &header, &twice), "mine", "has two predictions"),
         (truncated, "mine", "not a readable MCAP file"),
         (truth.clone(), "gt", "gt is a built-in row's name"),
+        (truth.clone(), "GT", "GT is a built-in row's name"),
         (truth.clone(), "a/b", "cannot name a row"),
+        (truth.clone(), "a|b", "cannot name a row"),
     ];
     for (file, name, message) in cases {
         let err = score(root, &registry, &file, name).err().unwrap_or_else(|| panic!("{message}"));

@@ -27,22 +27,34 @@ fn full_prediction() -> (String, Prediction) {
     turned.scale = 0.9;
     let prediction = Prediction {
         flow: Some(t.flow.clone()),
-        segments_p: t.part_p.iter().map(|&k| u32::from(k) + 7).collect(),
-        segments_q: t.part_q.iter().map(|&k| u32::from(k)).collect(),
-        motions: vec![t.motions[0], turned],
+        // Segment ids swapped against the part ids.
+        segments_p: t.part_p.iter().map(|&k| 1 - u32::from(k)).collect(),
+        segments_q: t.part_q.iter().map(|&k| 1 - u32::from(k)).collect(),
+        motions: vec![turned, t.motions[0]],
         corr_mask: Some((0..n).map(|i| i as f32 / n as f32).collect()),
         segment_probs: Some((0..n).map(|i| vec![0.25, 0.75 - i as f32 * 1e-3, 1e-7]).collect()),
         joints: Some(vec![
-            None,
             Some(JointEstimate {
                 kind: JointKind::Revolute,
                 axis: Vector3::new(0.0, 0.6, 0.8),
                 pivot: Point3::new(0.1, -0.2, 0.3),
                 value: 0.4,
             }),
+            None,
         ]),
     };
     (pair.id().to_owned(), prediction)
+}
+
+#[test]
+fn an_unfinished_file_leaves_nothing_behind() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let path = dir.path().join("p.mcap");
+    let mut writer = PredictionWriter::create(&path, &header()).expect("create");
+    writer.write(&PredictionRecord::failure("f", "x")).expect("write");
+    drop(writer);
+    let left: Vec<_> = std::fs::read_dir(dir.path()).expect("readable").collect();
+    assert!(left.is_empty(), "{left:?}");
 }
 
 #[test]
@@ -207,7 +219,26 @@ fn a_record_that_is_not_a_valid_prediction_fails_its_pair_only() {
         r.into_prediction().expect_err("invalid")
     };
     type Breakage = fn(&mut PredictionRecord);
-    let cases: [(Breakage, &str); 8] = [
+    let cases: [(Breakage, &str); 12] = [
+        (
+            |r| {
+                let motions = r.motions.as_mut().expect("set");
+                motions.push(motions[0].clone());
+            },
+            "motions has 3 entries, expected 2",
+        ),
+        (|r| r.joints.as_mut().expect("set").truncate(1), "joints has 1 entries, expected 2"),
+        (
+            |r| r.corr_mask.as_mut().expect("set")[0..4].copy_from_slice(&1.5f32.to_le_bytes()),
+            "corr_mask[0] is not in [0, 1]",
+        ),
+        (
+            |r| {
+                r.segment_probs.as_mut().expect("set").values[4..8]
+                    .copy_from_slice(&f32::NAN.to_le_bytes())
+            },
+            "segment_probs value 1 is not finite",
+        ),
         (|r| r.segments_p = None, "no segments_p"),
         (|r| r.segments_p.as_mut().expect("set").pop().map(drop).unwrap_or(()), "segments_p has"),
         (|r| r.flow.as_mut().expect("set").truncate(8), "flow has 2 floats, not a multiple of 3"),
@@ -221,8 +252,8 @@ fn a_record_that_is_not_a_valid_prediction_fails_its_pair_only() {
             "motions[0] is not finite",
         ),
         (
-            |r| r.joints.as_mut().expect("set")[1].as_mut().expect("set").kind = "ball".into(),
-            "joints[1].kind is \"ball\"",
+            |r| r.joints.as_mut().expect("set")[0].as_mut().expect("set").kind = "ball".into(),
+            "joints[0].kind is \"ball\"",
         ),
         (|r| r.segment_probs.as_mut().expect("set").columns = 5, "not a multiple of 5 columns"),
     ];

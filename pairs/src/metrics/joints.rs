@@ -78,11 +78,13 @@ pub fn true_state_change(joint: &JointTruth, scale_p: f32) -> f64 {
     }
 }
 
-/// The estimate's state change in the units of [`true_state_change`].
+/// The estimate's state change in the units of [`true_state_change`]: its magnitude, as the
+/// truth's (an axis and value may both be flipped).
 fn estimated_state_change(estimate: &JointEstimate) -> f64 {
+    let change = f64::from(estimate.value.abs());
     match estimate.kind {
-        JointKind::Revolute => f64::from(estimate.value).to_degrees(),
-        JointKind::Prismatic => f64::from(estimate.value),
+        JointKind::Revolute => change.to_degrees(),
+        JointKind::Prismatic => change,
     }
 }
 

@@ -181,7 +181,7 @@ impl PredictionRecord {
             None => Vec::new(),
         };
         let flow = self.flow.map(|bytes| vectors("flow", &bytes)).transpose()?;
-        let motions = self
+        let motions: Vec<Similarity> = self
             .motions
             .unwrap_or_default()
             .iter()
@@ -189,7 +189,14 @@ impl PredictionRecord {
             .map(|(s, m)| similarity(s, m))
             .collect::<Result<_, _>>()?;
         let corr_mask = self.corr_mask.map(|bytes| floats("corr_mask", &bytes)).transpose()?;
+        if let Some(i) = corr_mask.iter().flatten().position(|v| !(0.0..=1.0).contains(v)) {
+            return Err(format!("corr_mask[{i}] is not in [0, 1]"));
+        }
         let segment_probs = self.segment_probs.map(probabilities).transpose()?;
+        let flat = segment_probs.iter().flatten().flatten();
+        if let Some(i) = flat.clone().position(|v| !v.is_finite()) {
+            return Err(format!("segment_probs value {i} is not finite"));
+        }
         if let Some(rows) = segment_probs.as_ref().filter(|r| r.len() != segments_p.len()) {
             return Err(format!(
                 "segment_probs has {} rows but segments_p {} entries",
@@ -207,6 +214,16 @@ impl PredictionRecord {
                     .collect::<Result<Vec<_>, _>>()
             })
             .transpose()?;
+        // Motions and joints, when given, have one entry per segment id (S = one more than
+        // the largest id of P and Q).
+        let count = segments_p.iter().chain(&segments_q).max().map_or(0, |&s| s as usize + 1);
+        let lengths = [("motions", motions.len()), ("joints", joints.as_ref().map_or(0, Vec::len))];
+        if let Some((field, len)) = lengths.into_iter().find(|&(_, n)| n != 0 && n != count) {
+            return Err(format!(
+                "{field} has {len} entries, expected {count} (one per segment id 0..={})",
+                count.saturating_sub(1)
+            ));
+        }
         Ok(Prediction { flow, segments_p, segments_q, motions, corr_mask, segment_probs, joints })
     }
 }

@@ -19,11 +19,13 @@ use crate::error::PredictionsError;
 /// Uncompressed chunk size: bounds the writer's memory whatever the number of pairs.
 const CHUNK_BYTES: u64 = 4 << 20;
 
-/// Writes one prediction file, record by record.
+/// Writes one prediction file, record by record. Dropped before
+/// [`finish`](PredictionWriter::finish), it removes its partial file.
 pub struct PredictionWriter {
     path: PathBuf,
     partial: PathBuf,
-    mcap: Writer<BufWriter<File>>,
+    /// `None` once finished.
+    mcap: Option<Writer<BufWriter<File>>>,
     channel: u16,
     count: u64,
 }
@@ -56,7 +58,7 @@ impl PredictionWriter {
             .map_err(PredictionsError::mcap(&partial))?;
         let channel = add(&mut mcap, PREDICTION_TOPIC, PREDICTION_SCHEMA)
             .map_err(PredictionsError::mcap(&partial))?;
-        let mut writer = Self { path: path.into(), partial, mcap, channel, count: 0 };
+        let mut writer = Self { path: path.into(), partial, mcap: Some(mcap), channel, count: 0 };
         writer.message(header_channel, 0, &cbor(header))?;
         Ok(writer)
     }
@@ -64,9 +66,8 @@ impl PredictionWriter {
     fn message(&mut self, channel_id: u16, time: u64, data: &[u8]) -> Result<(), PredictionsError> {
         let header =
             MessageHeader { channel_id, sequence: time as u32, log_time: time, publish_time: time };
-        self.mcap
-            .write_to_known_channel(&header, data)
-            .map_err(PredictionsError::mcap(&self.partial))
+        let mcap = self.mcap.as_mut().expect("present until finish or drop");
+        mcap.write_to_known_channel(&header, data).map_err(PredictionsError::mcap(&self.partial))
     }
 
     /// Appends one pair's record.
@@ -87,10 +88,25 @@ impl PredictionWriter {
 
     /// Closes the file and renames it into place; returns its path.
     pub fn finish(mut self) -> Result<PathBuf, PredictionsError> {
-        self.mcap.finish().map_err(PredictionsError::mcap(&self.partial))?;
-        drop(self.mcap);
+        let mut mcap = self.mcap.take().expect("present until finish or drop");
+        mcap.finish().map_err(PredictionsError::mcap(&self.partial))?;
+        let file = mcap.into_inner().into_inner().map_err(|e| {
+            PredictionsError::io(&self.partial)(std::io::Error::other(e.to_string()))
+        })?;
+        file.sync_all().map_err(PredictionsError::io(&self.partial))?;
+        drop(file);
         std::fs::rename(&self.partial, &self.path).map_err(PredictionsError::io(&self.path))?;
-        Ok(self.path)
+        Ok(self.path.clone())
+    }
+}
+
+impl Drop for PredictionWriter {
+    fn drop(&mut self) {
+        if let Some(mcap) = self.mcap.take() {
+            // Unfinished: the partial file is never a prediction file.
+            drop(mcap);
+            let _ = std::fs::remove_file(&self.partial);
+        }
     }
 }
 
