@@ -3,6 +3,7 @@
 pub mod index;
 pub mod manifest;
 pub mod reader;
+pub(crate) mod records;
 pub mod schema;
 pub mod viz;
 pub mod writer;

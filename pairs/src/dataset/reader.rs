@@ -9,6 +9,7 @@ use mcap::records::{op, Record};
 use mcap::sans_io::{LinearReadEvent, LinearReader, LinearReaderOptions};
 
 use super::manifest::Manifest;
+use super::records::channel_lengths_fit;
 use super::schema::{decode_record, PAIR_ENCODING, PAIR_SCHEMA, PAIR_TOPIC, SCHEMA_VERSION};
 use super::writer::PAIRS_FILE;
 use crate::error::DatasetError;
@@ -132,6 +133,10 @@ impl<R: Read> PairReader<R> {
                 LinearReadEvent::Record { opcode, data } => {
                     if opcode != op::CHANNEL && opcode != op::MESSAGE {
                         continue;
+                    }
+                    if opcode == op::CHANNEL && !channel_lengths_fit(data) {
+                        let reason = "a channel record's length fields exceed it (corrupt)".into();
+                        return Err(DatasetError::Schema { path: path.into(), reason });
                     }
                     match mcap::parse_record(opcode, data).map_err(DatasetError::mcap(path))? {
                         Record::Channel(channel) if channel.topic == PAIR_TOPIC => {

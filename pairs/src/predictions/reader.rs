@@ -13,6 +13,7 @@ use super::schema::{
     PredictionHeader, PredictionRecord, HEADER_SCHEMA, HEADER_TOPIC, PREDICTIONS_FORMAT,
     PREDICTIONS_VERSION, PREDICTION_ENCODING, PREDICTION_SCHEMA, PREDICTION_TOPIC,
 };
+use crate::dataset::records::channel_lengths_fit;
 use crate::error::PredictionsError;
 use crate::method::Prediction;
 
@@ -121,6 +122,10 @@ impl<R: Read> PredictionReader<R> {
                 LinearReadEvent::Record { opcode, data } => {
                     if opcode != op::CHANNEL && opcode != op::MESSAGE {
                         continue;
+                    }
+                    if opcode == op::CHANNEL && !channel_lengths_fit(data) {
+                        let reason = "a channel record's length fields exceed it (corrupt)".into();
+                        return Err(PredictionsError::Schema { path: path.into(), reason });
                     }
                     match mcap::parse_record(opcode, data).map_err(PredictionsError::mcap(path))? {
                         Record::Channel(channel) if channel.topic == HEADER_TOPIC => {
