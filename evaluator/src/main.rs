@@ -264,7 +264,7 @@ fn run_command(command: Command) -> Result<()> {
 /// Prints a row's lines of the flow and segmentation boards.
 fn print_row(reports: &Path, row: &str) {
     for (board, columns) in [
-        ("leaderboard_flow.csv", &["epe", "pcc_005", "pcc_010"][..]),
+        ("leaderboard_flow.csv", &["epe", "pcc_0.05", "pcc_0.10"][..]),
         ("leaderboard_seg.csv", &["ri", "iou", "pairs", "failed"][..]),
     ] {
         let Ok(mut reader) = csv::Reader::from_path(reports.join(board)) else { continue };

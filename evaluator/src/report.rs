@@ -23,6 +23,8 @@ fn cell(value: AnyValue) -> String {
         AnyValue::Null => "–".into(),
         AnyValue::Float64(v) => format!("{v:.4}"),
         AnyValue::String(s) => s.to_owned(),
+        // A column whose rows are all equal can come back as one owned scalar.
+        AnyValue::StringOwned(s) => s.to_string(),
         other => other.to_string(),
     }
 }

@@ -272,3 +272,16 @@ fn a_user_dataset_is_scored_under_its_name_and_bad_folders_are_refused() {
     assert!(err.to_string().contains("broken") && err.to_string().contains("pairs.mcap"), "{err}");
     assert_eq!(read(&reports.join("LEADERBOARD.md")), board, "failed runs leave the reports alone");
 }
+
+#[test]
+fn a_board_of_one_row_prints_its_names_unquoted() {
+    // Columns whose rows are all equal come back from polars as one owned scalar; the
+    // report printed those with Debug quotes ("tiny") before.
+    let dir = tempfile::tempdir().expect("a temporary folder");
+    let mut registry = Registry::new();
+    registry.oracle();
+    run(dir.path(), &registry);
+    let report = read(&dir.path().join("reports/LEADERBOARD.md"));
+    assert!(report.contains("| tiny | gt | gt | true | 0.0000 |"), "{report}");
+    assert!(!report.contains("\"tiny\""), "{report}");
+}
