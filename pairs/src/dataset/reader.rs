@@ -2,23 +2,18 @@
 //! so a dataset of any size is read in bounded memory.
 
 use std::fs::File;
-use std::io::{BufReader, ErrorKind, Read};
+use std::io::{BufReader, Read};
 use std::path::{Path, PathBuf};
 
-use mcap::records::{op, Record};
-use mcap::sans_io::{LinearReadEvent, LinearReader, LinearReaderOptions};
+use mcap::records::Record;
 
 use super::manifest::Manifest;
-use super::records::channel_lengths_fit;
+use super::records::{RecordStream, StreamError};
 use super::schema::{decode_record, PAIR_ENCODING, PAIR_SCHEMA, PAIR_TOPIC, SCHEMA_VERSION};
 use super::writer::PAIRS_FILE;
 use crate::error::DatasetError;
 use crate::pair::Pair;
 use crate::scan::{PairImages, Scan, ScanImages};
-
-/// Largest record the reader buffers; a corrupt length field beyond it is an error, not an
-/// allocation.
-const RECORD_LIMIT: usize = 256 << 20;
 
 /// A dataset folder opened for reading: its manifest and a way to stream its pairs.
 #[derive(Debug, Clone)]
@@ -79,8 +74,7 @@ impl Dataset {
 /// An iterator over the pairs of one `pairs.mcap` stream, validating each.
 pub struct PairReader<R> {
     path: PathBuf,
-    source: R,
-    reader: LinearReader,
+    records: RecordStream<R>,
     pair_channel: Option<u16>,
     expected: Option<u64>,
     count: u64,
@@ -99,15 +93,9 @@ impl PairReader<BufReader<File>> {
 impl<R: Read> PairReader<R> {
     /// Reads pairs from any byte stream; `path` names it in errors.
     pub fn new(path: impl Into<PathBuf>, source: R) -> Self {
-        let options = LinearReaderOptions::default()
-            .with_validate_chunk_crcs(true)
-            .with_validate_summary_section_crc(true)
-            .with_validate_data_section_crc(true)
-            .with_record_length_limit(RECORD_LIMIT);
         Self {
             path: path.into(),
-            source,
-            reader: LinearReader::new_with_options(options),
+            records: RecordStream::new(source),
             pair_channel: None,
             expected: None,
             count: 0,
@@ -118,47 +106,29 @@ impl<R: Read> PairReader<R> {
     /// The next pair, `Ok(None)` at a clean end of the stream.
     fn next_pair(&mut self) -> Result<Option<Pair>, DatasetError> {
         let path = self.path.as_path();
-        while let Some(event) = self.reader.next_event() {
-            match event.map_err(DatasetError::mcap(path))? {
-                LinearReadEvent::ReadRequest(need) => {
-                    let buf = self.reader.insert(need);
-                    let n = loop {
-                        match self.source.read(buf) {
-                            Err(e) if e.kind() == ErrorKind::Interrupted => continue,
-                            other => break other.map_err(DatasetError::io(path))?,
-                        }
-                    };
-                    self.reader.notify_read(n);
+        while let Some(record) = self.records.next_record().map_err(|e| stream_error(path, e))? {
+            match record {
+                Record::Channel(channel) if channel.topic == PAIR_TOPIC => {
+                    check_channel(path, &channel)?;
+                    self.pair_channel = Some(channel.id);
                 }
-                LinearReadEvent::Record { opcode, data } => {
-                    if opcode != op::CHANNEL && opcode != op::MESSAGE {
-                        continue;
-                    }
-                    if opcode == op::CHANNEL && !channel_lengths_fit(data) {
-                        let reason = "a channel record's length fields exceed it (corrupt)".into();
-                        return Err(DatasetError::Schema { path: path.into(), reason });
-                    }
-                    match mcap::parse_record(opcode, data).map_err(DatasetError::mcap(path))? {
-                        Record::Channel(channel) if channel.topic == PAIR_TOPIC => {
-                            check_channel(path, &channel)?;
-                            self.pair_channel = Some(channel.id);
-                        }
-                        Record::Message { header, data }
-                            if Some(header.channel_id) == self.pair_channel =>
-                        {
-                            let message = self.count;
-                            let record = decode_record(&data).map_err(|reason| {
-                                DatasetError::Decode { path: path.into(), message, reason }
-                            })?;
-                            let pair = record.into_pair().map_err(|source| {
-                                DatasetError::InvalidPair { path: path.into(), source }
-                            })?;
-                            self.count += 1;
-                            return Ok(Some(pair));
-                        }
-                        _ => {}
-                    }
+                Record::Message { header, data }
+                    if Some(header.channel_id) == self.pair_channel =>
+                {
+                    let message = self.count;
+                    let record = decode_record(&data).map_err(|reason| DatasetError::Decode {
+                        path: path.into(),
+                        message,
+                        reason,
+                    })?;
+                    let pair = record.into_pair().map_err(|source| DatasetError::InvalidPair {
+                        path: path.into(),
+                        source,
+                    })?;
+                    self.count += 1;
+                    return Ok(Some(pair));
                 }
+                _ => {}
             }
         }
         if self.pair_channel.is_none() {
@@ -170,6 +140,16 @@ impl<R: Read> PairReader<R> {
                 Err(DatasetError::Truncated { path: path.into(), expected, found: self.count })
             }
             _ => Ok(None),
+        }
+    }
+}
+
+fn stream_error(path: &Path, error: StreamError) -> DatasetError {
+    match error {
+        StreamError::Io(source) => DatasetError::Io { path: path.into(), source },
+        StreamError::Mcap(source) => DatasetError::Mcap { path: path.into(), source },
+        StreamError::CorruptChannel => {
+            DatasetError::Schema { path: path.into(), reason: StreamError::CORRUPT_CHANNEL.into() }
         }
     }
 }

@@ -1,12 +1,88 @@
-//! A guard before `mcap::parse_record` on a Channel record: the mcap crate reserves the
-//! length a string field claims before it checks that the record holds that many bytes, so
-//! a corrupt length (found by fuzzing the readers) would allocate gigabytes. Every length
-//! field of the record is checked against the record's own size first.
+//! The Channel and Message records of an MCAP byte stream, read forward in bounded memory
+//! with every checksum validated: what the dataset reader and the prediction reader share.
+//!
+//! Before `mcap::parse_record` sees a Channel record, its length fields are checked against
+//! the record's own size: the mcap crate reserves the length a string field claims before it
+//! checks that the record holds that many bytes, so a corrupt length (found by fuzzing the
+//! readers) would allocate gigabytes.
+
+use std::io::{ErrorKind, Read};
+
+use mcap::records::{op, Record};
+use mcap::sans_io::{LinearReadEvent, LinearReader, LinearReaderOptions};
+
+/// Largest record the readers buffer; a corrupt length field beyond it is an error, not an
+/// allocation.
+const RECORD_LIMIT: usize = 256 << 20;
+
+/// Why the next record could not be read.
+#[derive(Debug)]
+pub(crate) enum StreamError {
+    /// Reading the byte stream failed.
+    Io(std::io::Error),
+    /// The MCAP structure is broken (truncated, a checksum, a record that does not parse).
+    Mcap(mcap::McapError),
+    /// A Channel record's length fields claim more bytes than it has.
+    CorruptChannel,
+}
+
+impl StreamError {
+    /// What a reader says about a corrupt channel record.
+    pub(crate) const CORRUPT_CHANNEL: &'static str =
+        "a channel record's length fields exceed it (corrupt)";
+}
+
+/// The Channel and Message records of a byte stream, in file order.
+pub(crate) struct RecordStream<R> {
+    source: R,
+    reader: LinearReader,
+}
+
+impl<R: Read> RecordStream<R> {
+    /// Reads `source` from its start.
+    pub(crate) fn new(source: R) -> Self {
+        let options = LinearReaderOptions::default()
+            .with_validate_chunk_crcs(true)
+            .with_validate_summary_section_crc(true)
+            .with_validate_data_section_crc(true)
+            .with_record_length_limit(RECORD_LIMIT);
+        Self { source, reader: LinearReader::new_with_options(options) }
+    }
+
+    /// The next Channel or Message record, `Ok(None)` at the stream's clean end.
+    pub(crate) fn next_record(&mut self) -> Result<Option<Record<'static>>, StreamError> {
+        while let Some(event) = self.reader.next_event() {
+            match event.map_err(StreamError::Mcap)? {
+                LinearReadEvent::ReadRequest(need) => {
+                    let buf = self.reader.insert(need);
+                    let n = loop {
+                        match self.source.read(buf) {
+                            Err(e) if e.kind() == ErrorKind::Interrupted => continue,
+                            other => break other.map_err(StreamError::Io)?,
+                        }
+                    };
+                    self.reader.notify_read(n);
+                }
+                LinearReadEvent::Record { opcode, data } => {
+                    if opcode != op::CHANNEL && opcode != op::MESSAGE {
+                        continue;
+                    }
+                    if opcode == op::CHANNEL && !channel_lengths_fit(data) {
+                        return Err(StreamError::CorruptChannel);
+                    }
+                    let record = mcap::parse_record(opcode, data).map_err(StreamError::Mcap)?;
+                    return Ok(Some(record.into_owned()));
+                }
+            }
+        }
+        Ok(None)
+    }
+}
 
 /// Whether every length field of a Channel record's body (`id` u16, `schema_id` u16,
 /// `topic` and `message_encoding` strings, `metadata` map of strings, each a u32 length
 /// then the bytes) stays within `data`.
-pub(crate) fn channel_lengths_fit(data: &[u8]) -> bool {
+fn channel_lengths_fit(data: &[u8]) -> bool {
     /// The u32 length at `at` and the offset after its bytes, if they end by `end`.
     fn field(data: &[u8], at: usize, end: usize) -> Option<usize> {
         let bytes = data.get(at..at.checked_add(4)?)?;

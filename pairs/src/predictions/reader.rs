@@ -3,23 +3,18 @@
 
 use std::collections::HashSet;
 use std::fs::File;
-use std::io::{BufReader, ErrorKind, Read};
+use std::io::{BufReader, Read};
 use std::path::{Path, PathBuf};
 
-use mcap::records::{op, Record};
-use mcap::sans_io::{LinearReadEvent, LinearReader, LinearReaderOptions};
+use mcap::records::Record;
 
 use super::schema::{
     PredictionHeader, PredictionRecord, HEADER_SCHEMA, HEADER_TOPIC, PREDICTIONS_FORMAT,
     PREDICTIONS_VERSION, PREDICTION_ENCODING, PREDICTION_SCHEMA, PREDICTION_TOPIC,
 };
-use crate::dataset::records::channel_lengths_fit;
+use crate::dataset::records::{RecordStream, StreamError};
 use crate::error::PredictionsError;
 use crate::method::Prediction;
-
-/// Largest record the reader buffers; a corrupt length field beyond it is an error, not an
-/// allocation.
-const RECORD_LIMIT: usize = 256 << 20;
 
 /// One pair's entry of a prediction file.
 #[derive(Debug, Clone, PartialEq)]
@@ -34,8 +29,7 @@ pub struct ReadPrediction {
 /// An iterator over the predictions of one file, after its header.
 pub struct PredictionReader<R> {
     path: PathBuf,
-    source: R,
-    reader: LinearReader,
+    records: RecordStream<R>,
     header_channel: Option<u16>,
     prediction_channel: Option<u16>,
     header: Option<PredictionHeader>,
@@ -65,15 +59,9 @@ impl<R: Read> PredictionReader<R> {
     /// Reads predictions from any byte stream; `path` names it in errors. The header is read
     /// by the first call to [`header`](Self::header) or to the iterator.
     pub fn new(path: impl Into<PathBuf>, source: R) -> Self {
-        let options = LinearReaderOptions::default()
-            .with_validate_chunk_crcs(true)
-            .with_validate_summary_section_crc(true)
-            .with_validate_data_section_crc(true)
-            .with_record_length_limit(RECORD_LIMIT);
         Self {
             path: path.into(),
-            source,
-            reader: LinearReader::new_with_options(options),
+            records: RecordStream::new(source),
             header_channel: None,
             prediction_channel: None,
             header: None,
@@ -107,55 +95,32 @@ impl<R: Read> PredictionReader<R> {
     fn next_record(&mut self) -> Result<Option<Next>, PredictionsError> {
         let path = self.path.clone();
         let path = path.as_path();
-        while let Some(event) = self.reader.next_event() {
-            match event.map_err(PredictionsError::mcap(path))? {
-                LinearReadEvent::ReadRequest(need) => {
-                    let buf = self.reader.insert(need);
-                    let n = loop {
-                        match self.source.read(buf) {
-                            Err(e) if e.kind() == ErrorKind::Interrupted => continue,
-                            other => break other.map_err(PredictionsError::io(path))?,
-                        }
-                    };
-                    self.reader.notify_read(n);
+        while let Some(record) = self.records.next_record().map_err(|e| stream_error(path, e))? {
+            match record {
+                Record::Channel(channel) if channel.topic == HEADER_TOPIC => {
+                    check_channel(path, &channel, HEADER_SCHEMA)?;
+                    self.header_channel = Some(channel.id);
                 }
-                LinearReadEvent::Record { opcode, data } => {
-                    if opcode != op::CHANNEL && opcode != op::MESSAGE {
-                        continue;
-                    }
-                    if opcode == op::CHANNEL && !channel_lengths_fit(data) {
-                        let reason = "a channel record's length fields exceed it (corrupt)".into();
-                        return Err(PredictionsError::Schema { path: path.into(), reason });
-                    }
-                    match mcap::parse_record(opcode, data).map_err(PredictionsError::mcap(path))? {
-                        Record::Channel(channel) if channel.topic == HEADER_TOPIC => {
-                            check_channel(path, &channel, HEADER_SCHEMA)?;
-                            self.header_channel = Some(channel.id);
-                        }
-                        Record::Channel(channel) if channel.topic == PREDICTION_TOPIC => {
-                            check_channel(path, &channel, PREDICTION_SCHEMA)?;
-                            self.prediction_channel = Some(channel.id);
-                        }
-                        Record::Message { header, data }
-                            if Some(header.channel_id) == self.header_channel =>
-                        {
-                            if self.header.is_some() {
-                                return Err(self.schema(format!("a second {HEADER_TOPIC} record")));
-                            }
-                            return Ok(Some(Next::Header(decode_header(path, &data)?)));
-                        }
-                        Record::Message { header, data }
-                            if Some(header.channel_id) == self.prediction_channel =>
-                        {
-                            let message = self.count;
-                            self.count += 1;
-                            return Ok(Some(Next::Prediction(decode_prediction(
-                                path, message, &data,
-                            )?)));
-                        }
-                        _ => {}
-                    }
+                Record::Channel(channel) if channel.topic == PREDICTION_TOPIC => {
+                    check_channel(path, &channel, PREDICTION_SCHEMA)?;
+                    self.prediction_channel = Some(channel.id);
                 }
+                Record::Message { header, data }
+                    if Some(header.channel_id) == self.header_channel =>
+                {
+                    if self.header.is_some() {
+                        return Err(self.schema(format!("a second {HEADER_TOPIC} record")));
+                    }
+                    return Ok(Some(Next::Header(decode_header(path, &data)?)));
+                }
+                Record::Message { header, data }
+                    if Some(header.channel_id) == self.prediction_channel =>
+                {
+                    let message = self.count;
+                    self.count += 1;
+                    return Ok(Some(Next::Prediction(decode_prediction(path, message, &data)?)));
+                }
+                _ => {}
             }
         }
         Ok(None)
@@ -175,6 +140,17 @@ impl<R: Read> PredictionReader<R> {
             Some(Next::Header(_)) => Err(self.schema(format!("a second {HEADER_TOPIC} record"))),
             None => Ok(None),
         }
+    }
+}
+
+fn stream_error(path: &Path, error: StreamError) -> PredictionsError {
+    match error {
+        StreamError::Io(source) => PredictionsError::Io { path: path.into(), source },
+        StreamError::Mcap(source) => PredictionsError::Mcap { path: path.into(), source },
+        StreamError::CorruptChannel => PredictionsError::Schema {
+            path: path.into(),
+            reason: StreamError::CORRUPT_CHANNEL.into(),
+        },
     }
 }
 
