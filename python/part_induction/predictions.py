@@ -330,8 +330,10 @@ def read_predictions(path: PathLike) -> Tuple[Dict[str, Any], Iterator[Dict[str,
     PredictionError
         When the header is missing, not first, or of another format or version; a channel's
         schema is not the documented one; the file is truncated or corrupt; or a message is
-        not a CBOR map with an ``id``. (Array lengths against the dataset are the scorer's
-        to check.)
+        not a CBOR map with an ``id``; or a byte string is not a whole number of its values.
+        This reader is for inspecting files: it stops at the first such record, where
+        ``evaluator score`` fails only that pair (docs/FORMAT.md), and it does not check for
+        repeated ids, array lengths against the dataset, or rotations; the scorer does.
     """
     messages = _read_messages(Path(path))
     header = next(messages)
