@@ -144,6 +144,7 @@ mod tests {
         let mut object = ArticulatedObject::new("t", Link { name: "base".into(), mesh: cube() });
         let lid = Mesh::cuboid(Point3::new(0.0, 1.0, 0.0), Point3::new(1.0, 1.1, 1.0));
         let hinge = Joint {
+            name: String::new(),
             kind: JointKind::Revolute,
             parent: 0,
             child: 0,

@@ -7,7 +7,9 @@ use pairs::dataset::{DatasetOrigin, DatasetWriter, Manifest, Shard};
 use pairs::math::{Isometry3, Point3, Real};
 use pairs::parts::part_sizes;
 use pairs::scan::{PairImages, ScanImages};
-use pairs::{Cloud, DatasetError, Pair, PairError, PairInput, PairKind, Provenance, Scan, Scans};
+use pairs::{
+    Cloud, DatasetError, Pair, PairError, PairInput, PairKind, Pose, Provenance, Scan, Scans,
+};
 use rayon::prelude::*;
 
 use crate::categories::split_table;
@@ -142,9 +144,7 @@ pub fn pairs_of_object(
 ) -> Result<Vec<GeneratedPair>, GenerateError> {
     let sampler = SurfaceSampler::new(object);
     let mut rng = rng_for(config.seed, u64::from(index), Stream::States);
-    let states: Vec<Vec<Real>> = (0..config.states_per_object)
-        .map(|_| draw_state(object, config.rest_probability, &mut rng))
-        .collect();
+    let states = draw_states(config, object, &mut rng);
     let wanted = config.pairs_per_object as usize;
     let mut pairs = Vec::with_capacity(wanted);
     let scene = Scene { config, object, sampler: &sampler, index, variant };
@@ -170,6 +170,27 @@ pub fn pairs_of_object(
         });
     }
     Ok(pairs)
+}
+
+/// The articulation states of object `index` (one value per joint each): the states its
+/// pairs are drawn between, which `provenance.articulation_p` and `_q` index.
+pub fn object_states(
+    config: &GeneratorConfig,
+    object: &ArticulatedObject,
+    index: u32,
+) -> Vec<Vec<Real>> {
+    draw_states(config, object, &mut rng_for(config.seed, u64::from(index), Stream::States))
+}
+
+/// The object's states, drawn from `rng` (the start of its [`Stream::States`]).
+fn draw_states(
+    config: &GeneratorConfig,
+    object: &ArticulatedObject,
+    rng: &mut Rng,
+) -> Vec<Vec<Real>> {
+    (0..config.states_per_object)
+        .map(|_| draw_state(object, config.rest_probability, rng))
+        .collect()
 }
 
 /// One object of a dataset and what every pair of it needs.
@@ -220,10 +241,11 @@ fn make_pair(
     let pose = |values: &[Real], rng: &mut Rng| {
         let global =
             global_pose(config.pose_rotation_deg as Real, config.pose_translation as Real, rng);
-        link_poses(object, values).into_iter().map(|l| global * l).collect::<Vec<_>>()
+        let links = link_poses(object, values).into_iter().map(|l| global * l).collect::<Vec<_>>();
+        (global, links)
     };
-    let poses_p = pose(values_p, rng);
-    let poses_q = pose(values_q, rng);
+    let (global_p, poses_p) = pose(values_p, rng);
+    let (global_q, poses_q) = pose(values_q, rng);
     let motions: Vec<Isometry3> =
         poses_q.iter().zip(&poses_p).map(|(q, p)| q * p.inverse()).collect();
     let (scan_p, scan_q) = match variant.kind {
@@ -282,6 +304,10 @@ fn make_pair(
         articulation_q: state_q.index as u32,
         seed: config.seed,
         generator_version: GENERATOR_VERSION.into(),
+        joints_p: configuration(object, values_p),
+        joints_q: configuration(object, values_q),
+        pose_p: Some(Pose::of(&global_p)),
+        pose_q: Some(Pose::of(&global_q)),
     };
     let record = |obs: &Observation, side: &str| {
         obs.scan.as_ref().map(|s| {
@@ -411,4 +437,12 @@ pub fn dataset_origin(config: &GeneratorConfig, shard: Option<Shard>) -> Dataset
         shard,
         assets: Vec::new(),
     }
+}
+
+/// Every joint's value in one state, by joint name.
+pub fn configuration(
+    object: &ArticulatedObject,
+    values: &[Real],
+) -> std::collections::BTreeMap<String, Real> {
+    object.joints.iter().zip(values).map(|(j, &v)| (j.name.clone(), v)).collect()
 }

@@ -40,6 +40,7 @@ mod tests {
         let link = |name: &str| Link { name: name.into(), mesh: cube() };
         let mut obj = ArticulatedObject::new("test", link("base"));
         let slide = Joint {
+            name: String::new(),
             kind: JointKind::Prismatic,
             parent: 0,
             child: 0,
@@ -50,6 +51,7 @@ mod tests {
         };
         let arm = obj.attach(0, link("slider"), slide);
         let hinge = Joint {
+            name: String::new(),
             kind: JointKind::Revolute,
             axis: Vector3::z(),
             limits: (0.0, 2.0),

@@ -21,6 +21,7 @@ pub mod asset_dataset;
 pub mod categories;
 pub mod check;
 pub mod config;
+pub mod export;
 pub mod gallery;
 pub mod generate;
 pub mod import;

@@ -7,6 +7,8 @@ use clap::{Parser, Subcommand};
 use generator::asset_dataset::{generate_asset_dataset, load_assets, relative};
 use generator::categories::{Split, CATEGORIES};
 use generator::config::GeneratorConfig;
+use generator::export::formats::{export_dataset, Format};
+use generator::export::objects::{built_in_objects, export_objects, ObjectToExport, Source};
 use generator::gallery::write_gallery;
 use generator::generate::generate_dataset;
 use generator::shard::{merge_shards, parse_shard};
@@ -27,55 +29,10 @@ use pairs::PairKind;
 struct Args {
     #[command(subcommand)]
     command: Option<Command>,
-    /// TOML file with any of the config fields (see datasets/sf2f.toml).
-    #[arg(short, long, value_name = "FILE")]
-    config: Option<PathBuf>,
-    /// Kind of pairs: SF2F (full to full), SF2P (full to a virtual scan) or SP2P (scan to
-    /// scan, with depth, label and colour images under <out>/images). The scanner's
-    /// settings are the [scan] table of --config (datasets/sf2p.toml lists them).
-    #[arg(long, value_parser = parse_kind)]
-    kind: Option<PairKind>,
-    /// Number of objects; each gives --pairs-per-object pairs.
-    #[arg(short = 'n', long)]
-    objects: Option<u32>,
-    /// Pairs of distinct articulation states per object.
-    #[arg(long)]
-    pairs_per_object: Option<u32>,
-    /// Articulation states drawn per object.
-    #[arg(long)]
-    states_per_object: Option<u32>,
-    /// Points per cloud.
-    #[arg(short, long)]
-    points: Option<u32>,
-    /// Fewest points every part must get in both clouds; pairs below it are redrawn.
-    #[arg(long)]
-    min_part_points: Option<u32>,
-    /// Dataset seed: the same config and seed give byte-identical files.
-    #[arg(short, long)]
-    seed: Option<u64>,
-    /// Category split: test (held-out benchmark categories), train or validation.
-    #[arg(long)]
-    split: Option<Split>,
-    /// Comma-separated categories to draw objects from in turn (default: every category of
-    /// the split; see --list-categories). A name listed twice is drawn twice as often.
-    #[arg(long, value_delimiter = ',')]
-    categories: Option<Vec<String>>,
-    /// Make only shard I of N (I from 0): a contiguous range of the objects, for one task
-    /// of a cluster array job; `generator merge` joins the shards.
-    #[arg(long, value_name = "I/N", value_parser = parse_shard_arg)]
-    shard: Option<Shard>,
-    /// Make the dataset from user assets instead of the built-in categories: an asset file,
-    /// or a folder searched recursively for .urdf, .gltf, .glb, and .obj files with a
-    /// <name>.joints.json sidecar (docs/FORMAT.md, "User assets"). Each asset is one object
-    /// (--objects, --split and --categories do not apply).
-    #[arg(long, value_name = "PATH")]
-    assets: Option<PathBuf>,
-    /// Extra folder searched for URDF `package://` meshes (repeatable).
-    #[arg(long, value_name = "DIR")]
-    package_path: Vec<PathBuf>,
-    /// Range given to continuous (unlimited) joints of assets, degrees: LO,HI.
-    #[arg(long, value_name = "LO,HI", value_parser = parse_range, allow_hyphen_values = true)]
-    continuous_range: Option<[f64; 2]>,
+    #[command(flatten)]
+    selection: Selection,
+    #[command(flatten)]
+    sampling: Sampling,
     /// Output folder [default: datasets/<kind>, or datasets/<kind>-<split> for train and
     /// validation; datasets/assets-<kind> with --assets; reports/gallery with --gallery].
     #[arg(short, long, value_name = "DIR")]
@@ -97,6 +54,66 @@ struct Args {
     print_config: bool,
 }
 
+/// Which objects: the built-in categories and seed, or user assets (shared by generation
+/// and `export-objects`).
+#[derive(Debug, clap::Args)]
+struct Selection {
+    /// TOML file with any of the config fields (see datasets/sf2f.toml).
+    #[arg(short, long, value_name = "FILE")]
+    config: Option<PathBuf>,
+    /// Number of objects; each gives --pairs-per-object pairs.
+    #[arg(short = 'n', long)]
+    objects: Option<u32>,
+    /// Articulation states drawn per object.
+    #[arg(long)]
+    states_per_object: Option<u32>,
+    /// Dataset seed: the same config and seed give byte-identical files.
+    #[arg(short, long)]
+    seed: Option<u64>,
+    /// Category split: test (held-out benchmark categories), train or validation.
+    #[arg(long)]
+    split: Option<Split>,
+    /// Comma-separated categories to draw objects from in turn (default: every category of
+    /// the split; see --list-categories). A name listed twice is drawn twice as often.
+    #[arg(long, value_delimiter = ',')]
+    categories: Option<Vec<String>>,
+    /// Make the dataset from user assets instead of the built-in categories: an asset file,
+    /// or a folder searched recursively for .urdf, .gltf, .glb, and .obj files with a
+    /// <name>.joints.json sidecar (docs/FORMAT.md, "User assets"). Each asset is one object
+    /// (--objects, --split and --categories do not apply).
+    #[arg(long, value_name = "PATH")]
+    assets: Option<PathBuf>,
+    /// Extra folder searched for URDF `package://` meshes (repeatable).
+    #[arg(long, value_name = "DIR")]
+    package_path: Vec<PathBuf>,
+    /// Range given to continuous (unlimited) joints of assets, degrees: LO,HI.
+    #[arg(long, value_name = "LO,HI", value_parser = parse_range, allow_hyphen_values = true)]
+    continuous_range: Option<[f64; 2]>,
+}
+
+/// How objects become pairs (generation only).
+#[derive(Debug, clap::Args)]
+struct Sampling {
+    /// Kind of pairs: SF2F (full to full), SF2P (full to a virtual scan) or SP2P (scan to
+    /// scan, with depth, label and colour images under <out>/images). The scanner's
+    /// settings are the [scan] table of --config (datasets/sf2p.toml lists them).
+    #[arg(long, value_parser = parse_kind)]
+    kind: Option<PairKind>,
+    /// Pairs of distinct articulation states per object.
+    #[arg(long)]
+    pairs_per_object: Option<u32>,
+    /// Points per cloud.
+    #[arg(short, long)]
+    points: Option<u32>,
+    /// Fewest points every part must get in both clouds; pairs below it are redrawn.
+    #[arg(long)]
+    min_part_points: Option<u32>,
+    /// Make only shard I of N (I from 0): a contiguous range of the objects, for one task
+    /// of a cluster array job; `generator merge` joins the shards.
+    #[arg(long, value_name = "I/N", value_parser = parse_shard_arg)]
+    shard: Option<Shard>,
+}
+
 /// Shown after the options in `--help`.
 const EXAMPLES: &str = "Examples:
   generator --kind sf2p                                   the paper-size SF2P set, datasets/sf2p
@@ -105,7 +122,9 @@ const EXAMPLES: &str = "Examples:
   generator --shard 3/8 --out shards/3                    shard 3 of 8 (cluster array job)
   generator merge shards/* --out datasets/sf2f            the shards as one dataset
   generator --assets models/ --kind sf2p -o /tmp/m        pairs of your URDF, OBJ and glTF assets
-  generator --gallery                                     reports/gallery/*.png";
+  generator --gallery                                     reports/gallery/*.png
+  generator export-objects -n 26 --out objects/           objects as URDF (PartNet-Mobility layout)
+  generator export --format yi-mat --dataset datasets/sf2f --out sf2f-mat";
 
 /// Subcommands besides generating.
 #[derive(Debug, Subcommand)]
@@ -123,6 +142,52 @@ enum Command {
         #[arg(long)]
         force: bool,
     },
+    /// Export objects as simulation-ready folders in the PartNet-Mobility layout
+    /// (mobility.urdf, textured_objs/*.obj, mobility_v2.json, meta.json, states.json), one
+    /// per object, from the built-in categories or from --assets; `generator --assets <out>`
+    /// with the same settings makes the same pairs (docs/FORMAT.md, "Exported objects").
+    #[command(after_help = EXPORT_OBJECTS_EXAMPLES)]
+    ExportObjects {
+        #[command(flatten)]
+        selection: Selection,
+        /// Output folder; refused if not empty, unless --force.
+        #[arg(short, long, value_name = "DIR")]
+        out: PathBuf,
+        /// Replace the output folder's contents (only once the export is complete).
+        #[arg(long)]
+        force: bool,
+        /// Worker threads [default: all cores]; the output does not depend on it.
+        #[arg(short = 'j', long)]
+        threads: Option<usize>,
+    },
+    /// Export a dataset in another method's layout: `yi-mat` (the .mat files of Yi et al.'s
+    /// code) or `mbs-npz` (MultiBodySync's npz files and meta.json); docs/FORMAT.md,
+    /// "Exports for other methods".
+    Export {
+        /// Layout: yi-mat or mbs-npz.
+        #[arg(long, value_parser = parse_format)]
+        format: Format,
+        /// A dataset folder (with manifest.json and pairs.mcap).
+        #[arg(long, value_name = "DIR")]
+        dataset: PathBuf,
+        /// Output folder; refused if not empty, unless --force.
+        #[arg(short, long, value_name = "DIR")]
+        out: PathBuf,
+        /// Replace the output folder's contents (only once the export is complete).
+        #[arg(long)]
+        force: bool,
+    },
+}
+
+/// Shown after the options of `export-objects --help`.
+const EXPORT_OBJECTS_EXAMPLES: &str = "Examples:
+  generator export-objects -n 26 --out objects/            one object of every test category
+  generator export-objects --split train -n 200 --out o/   200 training objects
+  generator export-objects --assets models/ --out o/       your assets in the same layout
+  generator --assets objects/ -n 26 --kind sf2p            pairs of the exported objects";
+
+fn parse_format(s: &str) -> Result<Format, String> {
+    s.parse()
 }
 
 fn parse_shard_arg(s: &str) -> Result<Shard, String> {
@@ -144,7 +209,7 @@ fn parse_kind(s: &str) -> Result<PairKind, String> {
     }
 }
 
-impl Args {
+impl Selection {
     /// The config: built-in defaults, then the file, then the flags.
     fn config(&self) -> Result<GeneratorConfig> {
         let mut config = match &self.config {
@@ -159,17 +224,7 @@ impl Args {
         macro_rules! set {
             ($($field:ident),*) => { $(if let Some(v) = &self.$field { config.$field = v.clone(); })* };
         }
-        set!(
-            kind,
-            objects,
-            pairs_per_object,
-            states_per_object,
-            points,
-            min_part_points,
-            seed,
-            split,
-            categories
-        );
+        set!(objects, states_per_object, seed, split, categories);
         if !self.package_path.is_empty() || self.continuous_range.is_some() {
             let mut import = config.importer();
             import.package_paths.extend(self.package_path.iter().cloned());
@@ -178,6 +233,19 @@ impl Args {
             }
             config.import = Some(import);
         }
+        Ok(config)
+    }
+}
+
+impl Args {
+    /// The config of a dataset: the selection's, then the sampling flags.
+    fn config(&self) -> Result<GeneratorConfig> {
+        let mut config = self.selection.config()?;
+        let sampling = &self.sampling;
+        macro_rules! set {
+            ($($field:ident),*) => { $(if let Some(v) = &sampling.$field { config.$field = v.clone(); })* };
+        }
+        set!(kind, pairs_per_object, points, min_part_points);
         Ok(config)
     }
 }
@@ -194,8 +262,16 @@ fn main() {
 }
 
 fn run(args: Args) -> Result<()> {
-    if let Some(Command::Merge { shards, out, force }) = &args.command {
-        return merge(shards, out, *force);
+    match &args.command {
+        Some(Command::Merge { shards, out, force }) => return merge(shards, out, *force),
+        Some(Command::ExportObjects { selection, out, force, threads }) => {
+            set_threads(*threads)?;
+            return export_objects_command(selection, out, *force);
+        }
+        Some(Command::Export { format, dataset, out, force }) => {
+            return export_command(*format, dataset, out, *force);
+        }
+        None => {}
     }
     if args.list_categories {
         for c in CATEGORIES {
@@ -204,19 +280,11 @@ fn run(args: Args) -> Result<()> {
         }
         return Ok(());
     }
-    if let Some(threads) = args.threads {
-        if threads == 0 {
-            bail!("--threads must be at least 1");
-        }
-        rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build_global()
-            .context("starting the thread pool")?;
-    }
+    set_threads(args.threads)?;
     if args.gallery {
         let dir = args.out.clone().unwrap_or_else(|| PathBuf::from("reports/gallery"));
         let bar = progress_bar(CATEGORIES.len() as u64, "categories");
-        let written = write_gallery(&dir, args.seed.unwrap_or(0), |c| {
+        let written = write_gallery(&dir, args.selection.seed.unwrap_or(0), |c| {
             bar.set_message(c.name);
             bar.inc(1);
         })?;
@@ -230,22 +298,23 @@ fn run(args: Args) -> Result<()> {
         return Ok(());
     }
     config.validate().context("checking the config")?;
-    if let Some(root) = &args.assets {
+    if let Some(root) = &args.selection.assets {
         return assets(&args, &config, root);
     }
     let out = args.out.clone().unwrap_or_else(|| default_out(&config));
     if !args.force && out.join(pairs::dataset::MANIFEST_FILE).exists() {
         bail!("{} already holds a dataset; pass --force to replace it", out.display());
     }
-    let objects = generator::shard::shard_objects(config.objects, args.shard)?;
+    let objects = generator::shard::shard_objects(config.objects, args.sampling.shard)?;
     let bar = progress_bar(
         u64::from(objects.end - objects.start) * u64::from(config.pairs_per_object),
         "pairs",
     );
     bar.set_message(format!("generating {}", out.display()));
     let started = std::time::Instant::now();
-    let manifest = generate_dataset(&config, &out, args.force, args.shard, |n| bar.set_position(n))
-        .with_context(|| format!("generating the dataset in {}", out.display()))?;
+    let manifest =
+        generate_dataset(&config, &out, args.force, args.sampling.shard, |n| bar.set_position(n))
+            .with_context(|| format!("generating the dataset in {}", out.display()))?;
     bar.finish_and_clear();
     report(&manifest, &out, started);
     Ok(())
@@ -253,7 +322,7 @@ fn run(args: Args) -> Result<()> {
 
 /// `generator --assets`: one object per asset found; failures listed at the end.
 fn assets(args: &Args, config: &GeneratorConfig, root: &std::path::Path) -> Result<()> {
-    if args.shard.is_some() {
+    if args.sampling.shard.is_some() {
         bail!("--shard does not apply to --assets");
     }
     let out = args.out.clone().unwrap_or_else(|| {
@@ -293,6 +362,94 @@ fn assets(args: &Args, config: &GeneratorConfig, root: &std::path::Path) -> Resu
             println!("  {path}: {error}");
         }
     }
+    Ok(())
+}
+
+/// Sets the worker threads of the global pool (all cores when not given).
+fn set_threads(threads: Option<usize>) -> Result<()> {
+    if let Some(threads) = threads {
+        if threads == 0 {
+            bail!("--threads must be at least 1");
+        }
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build_global()
+            .context("starting the thread pool")?;
+    }
+    Ok(())
+}
+
+/// `generator export-objects`.
+fn export_objects_command(selection: &Selection, out: &std::path::Path, force: bool) -> Result<()> {
+    let config = selection.config()?;
+    config.validate().context("checking the config")?;
+    let started = std::time::Instant::now();
+    let objects = match &selection.assets {
+        Some(root) => {
+            let sources = load_assets(root, &config)
+                .with_context(|| format!("looking for assets in {}", root.display()))?;
+            let mut objects = Vec::with_capacity(sources.len());
+            let mut failed = 0;
+            for (i, source) in sources.into_iter().enumerate() {
+                let path = relative(root, &source.path);
+                match source.loaded {
+                    Ok(imported) => objects.push(ObjectToExport {
+                        object_id: i as u32,
+                        object: imported.object,
+                        source: Source::Asset { path },
+                    }),
+                    Err(e) => {
+                        failed += 1;
+                        eprintln!("  {path}: {e}");
+                    }
+                }
+            }
+            if objects.is_empty() {
+                bail!("no asset in {} could be read", root.display());
+            }
+            if failed > 0 {
+                eprintln!("{failed} assets could not be read and are not exported");
+            }
+            objects
+        }
+        None => built_in_objects(&config).context("building the objects")?,
+    };
+    let bar = progress_bar(objects.len() as u64, "objects");
+    bar.set_message(format!("exporting {}", out.display()));
+    let written = export_objects(&config, &objects, out, force, |n| bar.set_position(n))
+        .with_context(|| format!("exporting objects to {}", out.display()))?;
+    bar.finish_and_clear();
+    println!(
+        "wrote {} objects to {} in {:.2} s",
+        written.len(),
+        out.display(),
+        started.elapsed().as_secs_f64()
+    );
+    Ok(())
+}
+
+/// `generator export`.
+fn export_command(
+    format: Format,
+    dataset: &std::path::Path,
+    out: &std::path::Path,
+    force: bool,
+) -> Result<()> {
+    let started = std::time::Instant::now();
+    let bar = progress_bar(0, "pairs");
+    bar.set_message(format!("exporting {} as {}", dataset.display(), format.as_str()));
+    let summary = export_dataset(format, dataset, out, force, |n| bar.set_position(n))
+        .with_context(|| format!("exporting {} to {}", dataset.display(), out.display()))?;
+    bar.finish_and_clear();
+    println!(
+        "wrote {} pairs as {} ({} files, {:.1} MiB) to {} in {:.2} s",
+        summary.pairs,
+        format.as_str(),
+        summary.files,
+        summary.bytes as f64 / (1 << 20) as f64,
+        out.display(),
+        started.elapsed().as_secs_f64()
+    );
     Ok(())
 }
 

@@ -55,7 +55,7 @@ pub use error::{DatasetError, PairError, PredictionsError};
 pub use ground_truth::GroundTruth;
 pub use joints::{JointKind, JointTruth};
 pub use method::{Method, MethodError, Prediction, Segmenter};
-pub use pair::{Pair, PairInput, PairKind, Provenance};
+pub use pair::{Pair, PairInput, PairKind, Pose, Provenance};
 pub use parts::PartId;
 pub use scan::{Intrinsics, Scan, Scans};
 pub use transform::Similarity;

@@ -1,10 +1,13 @@
 //! The pair record: two clouds (`PairInput`), their ground truth and their provenance.
 
+use std::collections::BTreeMap;
+
 use serde::{Deserialize, Serialize};
 
 use crate::cloud::Cloud;
 use crate::error::PairError;
 use crate::ground_truth::GroundTruth;
+use crate::math::{Isometry3, Real};
 use crate::scan::Scans;
 use crate::validate;
 
@@ -33,8 +36,9 @@ impl PairKind {
     }
 }
 
-/// Where a pair came from, so that any pair can be regenerated.
-#[derive(Debug, Clone, PartialEq, Eq, Serialize, Deserialize)]
+/// Where a pair came from, so that any pair can be regenerated, and the object re-posed
+/// into both of its states elsewhere (a simulator, from the object's exported URDF).
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct Provenance {
     /// Object category (e.g. `laptop`).
     pub category: String,
@@ -48,6 +52,40 @@ pub struct Provenance {
     pub seed: u64,
     /// Version of the generator that made it.
     pub generator_version: String,
+    /// Every joint of the object by name (the exported URDF's joint names), unchanged ones
+    /// too, with its value in P's state: radians or object units. Empty in schema-1 files.
+    #[serde(default)]
+    pub joints_p: BTreeMap<String, Real>,
+    /// Every joint's value in Q's state, as [`Self::joints_p`].
+    #[serde(default)]
+    pub joints_q: BTreeMap<String, Real>,
+    /// P's global pose: the object's rest frame (its URDF base frame) into P's object frame,
+    /// the frame `p.centre` and `p.scale` normalise. Absent in schema-1 files.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pose_p: Option<Pose>,
+    /// Q's global pose, as [`Self::pose_p`].
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pose_q: Option<Pose>,
+}
+
+/// A rigid transform `x -> R x + t`.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Pose {
+    /// Rotation matrix R, row-major.
+    pub rotation: [Real; 9],
+    /// Translation t.
+    pub translation: [Real; 3],
+}
+
+impl Pose {
+    /// The pose of an isometry.
+    pub fn of(isometry: &Isometry3) -> Self {
+        let r = isometry.rotation.to_rotation_matrix().into_inner();
+        Self {
+            rotation: [r.m11, r.m12, r.m13, r.m21, r.m22, r.m23, r.m31, r.m32, r.m33],
+            translation: isometry.translation.vector.into(),
+        }
+    }
 }
 
 /// A pair as a method sees it: the two clouds, without any ground truth.
@@ -81,6 +119,7 @@ impl Pair {
         provenance: Provenance,
     ) -> Result<Self, PairError> {
         validate::pair(&input, &truth)?;
+        validate::provenance(&input.id, &provenance)?;
         Ok(Self { input, truth, provenance, scans: Scans::default() })
     }
 

@@ -67,6 +67,8 @@ pub fn hinge_pair(id: &str, side: usize, angle: Real) -> Pair {
         articulation_q: 1,
         seed: 0,
         generator_version: env!("CARGO_PKG_VERSION").into(),
+
+        ..Default::default()
     };
     Pair::new(PairInput { id: id.into(), kind: PairKind::Sf2f, p, q }, truth, provenance)
         .expect("the hinge pair satisfies every invariant by construction")

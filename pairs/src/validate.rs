@@ -3,7 +3,7 @@
 use crate::error::PairError;
 use crate::ground_truth::GroundTruth;
 use crate::math::{Matrix3, Point3, Real};
-use crate::pair::PairInput;
+use crate::pair::{PairInput, Provenance};
 use crate::parts::{PartId, MAX_PARTS};
 use crate::scan::Scans;
 
@@ -182,6 +182,31 @@ pub(crate) fn scans(id: &str, scans: &Scans) -> Result<(), PairError> {
         if defect > ROTATION_TOLERANCE || scan.rotation.determinant() <= 0.0 {
             let reason = "extrinsic rotation is not a rotation matrix".into();
             return Err(inconsistent(id, field, 0, reason));
+        }
+    }
+    Ok(())
+}
+
+/// The provenance's joint values are finite and its global poses are rigid.
+pub(crate) fn provenance(id: &str, provenance: &Provenance) -> Result<(), PairError> {
+    for (field, values) in [
+        ("provenance.joints_p", &provenance.joints_p),
+        ("provenance.joints_q", &provenance.joints_q),
+    ] {
+        for (index, (_, &value)) in values.iter().enumerate() {
+            finite(id, field, index, &[value])?;
+        }
+    }
+    for (field, pose) in
+        [("provenance.pose_p", &provenance.pose_p), ("provenance.pose_q", &provenance.pose_q)]
+    {
+        let Some(pose) = pose else { continue };
+        finite(id, field, 0, &pose.rotation)?;
+        finite(id, field, 0, &pose.translation)?;
+        let rotation = Matrix3::from_row_slice(&pose.rotation);
+        let defect = (rotation.transpose() * rotation - Matrix3::identity()).norm();
+        if defect > ROTATION_TOLERANCE || rotation.determinant() <= 0.0 {
+            return Err(inconsistent(id, field, 0, "rotation is not a rotation matrix".into()));
         }
     }
     Ok(())

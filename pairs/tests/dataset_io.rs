@@ -162,6 +162,41 @@ fn corrupt_bytes_give_errors_or_the_original_pairs() {
 }
 
 #[test]
+fn version_1_records_still_read_and_unknown_versions_are_refused() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let path = dir.path().join(PAIRS_FILE);
+    let pair = synthetic::hinge_pair("a", 3, 0.2);
+    // A version-1 record: no configurations or poses in its provenance.
+    let mut old = PairRecord::from_pair(&pair);
+    old.schema_version = 1;
+    let mut value: ciborium::Value =
+        ciborium::from_reader(encode(&old).as_slice()).expect("cbor value");
+    if let ciborium::Value::Map(fields) = &mut value {
+        for (key, field) in fields.iter_mut() {
+            if key.as_text() == Some("provenance") {
+                if let ciborium::Value::Map(provenance) = field {
+                    provenance.retain(|(k, _)| {
+                        !matches!(k.as_text(), Some("joints_p" | "joints_q" | "pose_p" | "pose_q"))
+                    });
+                    assert_eq!(provenance.len(), 6, "the six version-1 keys are left");
+                }
+            }
+        }
+    }
+    let mut bytes = Vec::new();
+    ciborium::into_writer(&value, &mut bytes).expect("encode");
+    write_raw_mcap(&path, "cbor", PAIR_SCHEMA, std::slice::from_ref(&bytes));
+    let read = PairReader::open(&path).expect("open").next().expect("an item").expect("read");
+    assert_eq!(read, pair);
+    assert!(read.provenance().joints_p.is_empty() && read.provenance().pose_p.is_none());
+    let mut future = PairRecord::from_pair(&pair);
+    future.schema_version = 3;
+    write_raw_mcap(&path, "cbor", PAIR_SCHEMA, &[encode(&future)]);
+    let err = PairReader::open(&path).expect("open").next().expect("an item").expect_err("v3");
+    assert!(err.to_string().contains("schema_version"), "{err}");
+}
+
+#[test]
 fn wrong_schema_is_reported() {
     let dir = tempfile::tempdir().expect("tempdir");
     let path = dir.path().join(PAIRS_FILE);

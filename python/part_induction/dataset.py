@@ -32,7 +32,9 @@ DATASET_FORMAT_VERSION = 1
 PAIR_TOPIC = "/pair"
 PAIR_ENCODING = "cbor"
 PAIR_SCHEMA = "part_induction.Pair"
-PAIR_SCHEMA_VERSION = 1
+PAIR_SCHEMA_VERSION = 2
+"""Record layout written by the generator; readers accept 1 to this."""
+OLDEST_PAIR_SCHEMA_VERSION = 1
 KINDS = ("SF2F", "SF2P", "SP2P")
 IMAGE_KINDS = ("depth", "labels", "colour")
 
@@ -175,7 +177,11 @@ class Pair:
         One per joint that moves a part.
     provenance : dict
         ``category``, ``object_id``, ``articulation_p``, ``articulation_q``, ``seed``,
-        ``generator_version``.
+        ``generator_version``; from schema version 2 also ``joints_p`` and ``joints_q``
+        (every joint of the object by name -> its value in P's / Q's state, radians or
+        object units) and ``pose_p`` and ``pose_q`` (``{"rotation": 9 floats row-major,
+        "translation": 3 floats}``: the object's rest frame, the exported URDF's ``base``
+        frame, into the posed object frame that the cloud's centre and scale normalise).
     scan_p, scan_q : dict or None
         The camera of a scanned side (``scan_p`` for SP2P, ``scan_q`` for SF2P and SP2P),
         else None: ``width``, ``height`` (int, pixels), ``intrinsics`` (float32 [4],
@@ -524,8 +530,12 @@ def decode_pair(record: Dict[str, Any], where: str) -> Pair:
     """
     c = _Checker(where)
     version = c.get(record, "schema_version", int)
-    if version != PAIR_SCHEMA_VERSION:
-        c.fail("schema_version", f"version {version} (this reader knows {PAIR_SCHEMA_VERSION})")
+    if not OLDEST_PAIR_SCHEMA_VERSION <= version <= PAIR_SCHEMA_VERSION:
+        c.fail(
+            "schema_version",
+            f"version {version} (this reader knows {OLDEST_PAIR_SCHEMA_VERSION} "
+            f"to {PAIR_SCHEMA_VERSION})",
+        )
     pair_id = c.get(record, "id", str)
     c.where = f"{where} (pair {pair_id!r})"
     kind = c.get(record, "kind", str)
@@ -706,12 +716,12 @@ class _Checker:
 def _check_channel(path: PathLike, channel: Channel) -> None:
     schema = channel.metadata.get("schema")
     version = channel.metadata.get("schema_version")
-    expected = (PAIR_ENCODING, PAIR_SCHEMA, str(PAIR_SCHEMA_VERSION))
-    if (channel.message_encoding, schema, version) != expected:
+    known = [str(v) for v in range(OLDEST_PAIR_SCHEMA_VERSION, PAIR_SCHEMA_VERSION + 1)]
+    if (channel.message_encoding, schema) != (PAIR_ENCODING, PAIR_SCHEMA) or version not in known:
         raise DatasetError(
             f"{path}: wrong schema: {PAIR_TOPIC} has encoding {channel.message_encoding!r}, "
             f"schema {schema!r} version {version!r} (expected {PAIR_ENCODING!r}, "
-            f"{PAIR_SCHEMA!r} version {PAIR_SCHEMA_VERSION})"
+            f"{PAIR_SCHEMA!r} version {OLDEST_PAIR_SCHEMA_VERSION} to {PAIR_SCHEMA_VERSION})"
         )
 
 

@@ -173,14 +173,14 @@ def test_a_rewritten_file_still_reads(sf2f_dir: Path, tmp_path: Path) -> None:
 
 def test_wrong_schema_version_is_refused(sf2f_dir: Path, tmp_path: Path) -> None:
     folder = copy_dataset(sf2f_dir, tmp_path / "d")
-    rewrite_pairs(folder, metadata={"schema_version": "2"})
-    with pytest.raises(DatasetError, match=r"pairs\.mcap: wrong schema: .*version '2'"):
+    rewrite_pairs(folder, metadata={"schema_version": "3"})
+    with pytest.raises(DatasetError, match=r"pairs\.mcap: wrong schema: .*version '3'"):
         list(open_dataset(folder))
 
 
 def test_wrong_record_version_is_refused(sf2f_dir: Path, tmp_path: Path) -> None:
     folder = copy_dataset(sf2f_dir, tmp_path / "d")
-    rewrite_pairs(folder, lambda i, r: dict(r, schema_version=2) if i == 4 else r)
+    rewrite_pairs(folder, lambda i, r: dict(r, schema_version=3) if i == 4 else r)
     with pytest.raises(DatasetError, match=r"/pair message 4: field `schema_version`"):
         list(open_dataset(folder))
 

@@ -100,6 +100,8 @@ pub fn two_part_pair(
         articulation_q: 1,
         seed: 0,
         generator_version: "test".into(),
+
+        ..Default::default()
     };
     Pair::new(PairInput { id: id.into(), kind: PairKind::Sf2f, p, q }, truth, provenance)
         .expect("the planted pair satisfies every invariant by construction")

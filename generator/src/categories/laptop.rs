@@ -50,6 +50,7 @@ fn build(rng: &mut Rng) -> ArticulatedObject {
     let mut object = ArticulatedObject::new("laptop", Link { name: "base".into(), mesh: base });
     // Turning about -x lifts the lid's front edge up and back.
     let hinge = Joint {
+        name: String::new(),
         kind: JointKind::Revolute,
         parent: 0,
         child: 0,

@@ -69,6 +69,7 @@ fn build(rng: &mut Rng) -> ArticulatedObject {
     let mut object =
         ArticulatedObject::new("scissors", Link { name: "lower blade".into(), mesh: lower });
     let pivot = Joint {
+        name: String::new(),
         kind: JointKind::Revolute,
         parent: 0,
         child: 0,

@@ -1,6 +1,6 @@
 //! A skeleton into the articulated-object model, by one set of rules for every format:
-//! fixed joints weld a link into its parent's part, parts are ordered depth first with
-//! siblings by name, joints get their limits (continuous ones the configured range), and
+//! fixed joints weld a link into its parent's part, parts are ordered parents first, then
+//! by name, joints get their limits (continuous ones the configured range), and
 //! mimic joints are resolved onto their first leader.
 
 use std::collections::HashMap;
@@ -38,23 +38,38 @@ pub fn assemble(
         c.sort_by(|&a, &b| links[tree.ends[a].1].name.cmp(&links[tree.ends[b].1].name));
         c
     };
-    // Depth first from the root, siblings by name: parts in that order, welded links
-    // appended to their part's mesh in the same order.
-    let mut order: Vec<usize> = Vec::new(); // parts (their first link)
-    let mut moving: Vec<usize> = Vec::new(); // joint of each part but the root
+    // Depth first from the root, siblings by name: each part's mesh is its links' meshes
+    // appended in that order.
+    let mut parts: Vec<usize> = Vec::new(); // each part's first link, depth first
     let mut meshes: HashMap<usize, Mesh> = HashMap::new();
     let mut stack = vec![tree.root];
     while let Some(link) = stack.pop() {
         let part = part_of(link);
         if part == link {
-            order.push(link);
-            if let Some(j) = tree.parent_joint[link] {
-                moving.push(j);
-            }
+            parts.push(link);
         }
         meshes.entry(part).or_default().append(links[link].mesh.clone());
         stack.extend(children_of(link).into_iter().rev().map(|j| tree.ends[j].1));
     }
+    // Parts in order: parents before children, otherwise by name in natural order
+    // (`link_2` before `link_10`), so that any order with parents first can be written
+    // down by naming, as `generator export-objects` does.
+    let parent_part = |part: usize| tree.parent_joint[part].map(|j| part_of(tree.ends[j].0));
+    let mut order: Vec<usize> = Vec::with_capacity(parts.len());
+    let mut ready: Vec<usize> = vec![tree.root];
+    while !ready.is_empty() {
+        let next = (0..ready.len())
+            .min_by(|&a, &b| {
+                alphanumeric_sort::compare_str(&links[ready[a]].name, &links[ready[b]].name)
+                    .then_with(|| links[ready[a]].name.cmp(&links[ready[b]].name))
+            })
+            .unwrap_or(0);
+        let part = ready.swap_remove(next);
+        order.push(part);
+        ready.extend(parts.iter().copied().filter(|&child| parent_part(child) == Some(part)));
+    }
+    // Joint of each part but the root, in part order.
+    let moving: Vec<usize> = order.iter().filter_map(|&l| tree.parent_joint[l]).collect();
     let position: HashMap<usize, usize> = order.iter().enumerate().map(|(i, &l)| (l, i)).collect();
     let mut object_links = Vec::with_capacity(order.len());
     for &l in &order {
@@ -113,6 +128,7 @@ fn model_joint(
     };
     let limits = (lo as Real, hi as Real);
     Ok(Joint {
+        name: raw.name.clone(),
         kind,
         parent,
         child,

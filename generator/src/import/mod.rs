@@ -6,8 +6,8 @@
 //! Every format is read into one plain intermediate, a [`skeleton::Skeleton`] of named
 //! links (meshes in the asset's rest frame) and named joints, and [`assembly::assemble`]
 //! turns that into the model the same way for every format: fixed joints weld a link into
-//! its parent's part, links are ordered parent first with siblings by name, mimic joints
-//! are resolved, and every rule breach is a typed [`ImportError`]. Nothing here panics on
+//! its parent's part, parts are ordered parents first, then by name (natural order), mimic
+//! joints are resolved, and every rule breach is a typed [`ImportError`]. Nothing here panics on
 //! bad input; `generator/fuzz` holds one fuzz target per parser.
 
 pub mod assembly;

@@ -20,6 +20,10 @@ pub struct Link {
 /// Axis and pivot are given in the rest frame; they move with the parent link.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Joint {
+    /// Name, unique within the object: the asset's joint name for imported objects; for
+    /// built-in ones given by [`ArticulatedObject::attach`] from the child link's name.
+    /// Provenance records joint values by it and exported URDFs use it.
+    pub name: String,
     /// Revolute (value in radians) or prismatic (value in object units).
     pub kind: JointKind,
     /// Index of the parent link.
@@ -104,6 +108,7 @@ impl Joint {
     /// `parent` and `child` are set by [`ArticulatedObject::attach`].
     pub fn revolute(pivot: Point3, axis: Vector3, limits: (Real, Real)) -> Self {
         Self {
+            name: String::new(),
             kind: JointKind::Revolute,
             parent: 0,
             child: 0,
@@ -131,6 +136,18 @@ impl Joint {
     }
 }
 
+/// `name` with every character outside `[A-Za-z0-9_-]` as `_` (`_` for an empty name): a
+/// name safe in URDF, file names and shell commands.
+pub fn identifier(name: &str) -> String {
+    let id: String =
+        name.chars().map(|c| if c.is_ascii_alphanumeric() || c == '-' { c } else { '_' }).collect();
+    if id.is_empty() {
+        "_".into()
+    } else {
+        id
+    }
+}
+
 impl ArticulatedObject {
     /// An object with only its root link.
     pub fn new(category: &str, root: Link) -> Self {
@@ -143,8 +160,16 @@ impl ArticulatedObject {
     }
 
     /// Adds `link` as the child of `parent` through a joint; returns the new link's index.
+    /// A joint without a name gets the child link's (spaces and other characters outside
+    /// `[A-Za-z0-9_-]` as `_`), with `_<link index>` added if another joint has it.
     pub fn attach(&mut self, parent: usize, link: Link, mut joint: Joint) -> usize {
         let child = self.links.len();
+        if joint.name.is_empty() {
+            joint.name = identifier(&link.name);
+            if self.joints.iter().any(|j| j.name == joint.name) {
+                joint.name = format!("{}_{child}", joint.name);
+            }
+        }
         self.links.push(link);
         joint.parent = parent;
         joint.child = child;
@@ -207,6 +232,9 @@ impl ArticulatedObject {
             };
             if (joint.axis.norm() - 1.0).abs() > 1e-4 {
                 return Err(joint_error("an axis that is not unit length"));
+            }
+            if joint.name.is_empty() || self.joints[..j].iter().any(|o| o.name == joint.name) {
+                return Err(joint_error("an empty name or the name of another joint"));
             }
             let (lo, hi) = joint.limits;
             if !(lo < hi && lo <= joint.rest && joint.rest <= hi) {

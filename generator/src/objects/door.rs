@@ -43,6 +43,7 @@ pub fn front_door(
         0.006,
     );
     let joint = Joint {
+        name: String::new(),
         kind: JointKind::Revolute,
         parent: 0,
         child: 0,

@@ -35,6 +35,7 @@ pub fn drawer(
         ),
     ]);
     let joint = Joint {
+        name: String::new(),
         kind: JointKind::Prismatic,
         parent: 0,
         child: 0,

@@ -23,4 +23,4 @@ pub mod round;
 pub mod shell;
 pub mod tube;
 
-pub use articulated::{ArticulatedObject, Joint, Link, Mimic, ObjectError};
+pub use articulated::{identifier, ArticulatedObject, Joint, Link, Mimic, ObjectError};

@@ -9,7 +9,9 @@ use mcap::records::Record;
 
 use super::manifest::Manifest;
 use super::records::{RecordStream, StreamError};
-use super::schema::{decode_record, PAIR_ENCODING, PAIR_SCHEMA, PAIR_TOPIC, SCHEMA_VERSION};
+use super::schema::{
+    decode_record, OLDEST_SCHEMA_VERSION, PAIR_ENCODING, PAIR_SCHEMA, PAIR_TOPIC, SCHEMA_VERSION,
+};
 use super::writer::PAIRS_FILE;
 use crate::error::DatasetError;
 use crate::pair::Pair;
@@ -157,14 +159,14 @@ fn stream_error(path: &Path, error: StreamError) -> DatasetError {
 fn check_channel(path: &Path, channel: &mcap::records::Channel) -> Result<(), DatasetError> {
     let schema = channel.metadata.get("schema").map(String::as_str);
     let version = channel.metadata.get("schema_version").map(String::as_str);
-    let expected_version = SCHEMA_VERSION.to_string();
-    if channel.message_encoding != PAIR_ENCODING
-        || schema != Some(PAIR_SCHEMA)
-        || version != Some(expected_version.as_str())
-    {
+    let known = version
+        .and_then(|v| v.parse::<u32>().ok())
+        .is_some_and(|v| (OLDEST_SCHEMA_VERSION..=SCHEMA_VERSION).contains(&v));
+    if channel.message_encoding != PAIR_ENCODING || schema != Some(PAIR_SCHEMA) || !known {
         let reason = format!(
             "{PAIR_TOPIC} has encoding {:?}, schema {schema:?} version {version:?} \
-             (expected {PAIR_ENCODING:?}, {PAIR_SCHEMA:?} version {SCHEMA_VERSION})",
+             (expected {PAIR_ENCODING:?}, {PAIR_SCHEMA:?} version \
+             {OLDEST_SCHEMA_VERSION} to {SCHEMA_VERSION})",
             channel.message_encoding
         );
         return Err(DatasetError::Schema { path: path.into(), reason });

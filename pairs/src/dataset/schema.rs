@@ -20,8 +20,11 @@ pub const PAIR_TOPIC: &str = "/pair";
 pub const PAIR_ENCODING: &str = "cbor";
 /// Schema name recorded in the `/pair` channel's metadata under `schema`.
 pub const PAIR_SCHEMA: &str = "part_induction.Pair";
-/// Version of the record layout, in the channel metadata and in every record.
-pub const SCHEMA_VERSION: u32 = 1;
+/// Version of the record layout written, in the channel metadata and in every record.
+/// Version 2 added the full joint configurations and global poses to `provenance`.
+pub const SCHEMA_VERSION: u32 = 2;
+/// Oldest record layout still read (its provenance has no configurations or poses).
+pub const OLDEST_SCHEMA_VERSION: u32 = 1;
 
 /// One cloud: points as `N x 3` little-endian f32, and its normalisation.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -160,9 +163,11 @@ impl PairRecord {
     /// Decodes the byte arrays and validates the pair.
     pub fn into_pair(self) -> Result<Pair, PairError> {
         let id = self.id;
-        if self.schema_version != SCHEMA_VERSION {
-            let reason =
-                format!("version {} (this reader knows {SCHEMA_VERSION})", self.schema_version);
+        if !(OLDEST_SCHEMA_VERSION..=SCHEMA_VERSION).contains(&self.schema_version) {
+            let reason = format!(
+                "version {} (this reader knows {OLDEST_SCHEMA_VERSION} to {SCHEMA_VERSION})",
+                self.schema_version
+            );
             return Err(PairError::Inconsistent {
                 pair: id,
                 field: "schema_version",

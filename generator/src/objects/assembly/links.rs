@@ -69,6 +69,7 @@ fn joint(
 ) -> (String, Joint) {
     let normal = face.normal();
     let joint = |kind, pivot, axis, limits: (Real, Real)| Joint {
+        name: String::new(),
         kind,
         parent,
         child: 0,
