@@ -1,6 +1,6 @@
 """Objects exported by `generator export-objects`, checked by a URDF reader we did not write
-(yourdfpy): every test category loads without warnings; its joints' types, limits and axes
-are the generator's; each link's world transform and posed mesh bounds at several joint
+(yourdfpy): one object of every category (train, validation and test) loads without
+warnings; its joints' types, limits and axes are the generator's; each link's world transform and posed mesh bounds at several joint
 configurations match the generator's own forward kinematics (`generator/examples/
 kinematics_json.rs`) to 1e-5; and for pairs made from the exported objects
 (`generator --assets`), posing the URDF at each pair's recorded joint values and global
@@ -25,25 +25,32 @@ from part_induction import open_dataset
 
 
 SEED = 3
-#: One object of every test category (the split has 26, drawn in turn).
-OBJECTS = 26
 
 
 @pytest.fixture(scope="module")
-def exported(tmp_path_factory: pytest.TempPathFactory) -> Path:
+def categories() -> List[str]:
+    """Every built-in category of every split (`generator --list-categories`)."""
+    listing = run_cargo("run", "-q", "-p", "generator", "--", "--list-categories")
+    return [line.split()[0] for line in listing.splitlines() if line.strip()]
+
+
+@pytest.fixture(scope="module")
+def exported(tmp_path_factory: pytest.TempPathFactory, categories: List[str]) -> Path:
+    """One object of every category."""
     out = tmp_path_factory.mktemp("objects") / "objects"
     run_cargo(
-        "run", "-q", "-p", "generator", "--", "export-objects",
-        "--seed", str(SEED), "-n", str(OBJECTS), "--out", str(out),
+        "run", "-q", "-p", "generator", "--", "export-objects", "--seed", str(SEED),
+        "--categories", ",".join(categories), "-n", str(len(categories)), "--out", str(out),
     )
     return out
 
 
 @pytest.fixture(scope="module")
-def kinematics() -> List[Dict[str, Any]]:
+def kinematics(categories: List[str]) -> List[Dict[str, Any]]:
     text = run_cargo(
         "run", "-q", "-p", "generator", "--example", "kinematics_json", "--",
-        "--seed", str(SEED), "-n", str(OBJECTS), "--states", "2",
+        "--seed", str(SEED), "--categories", ",".join(categories),
+        "-n", str(len(categories)), "--states", "2",
     )
     return json.loads(text)
 
@@ -57,12 +64,15 @@ def actuated(robot: "yourdfpy.URDF", values: Dict[str, float]) -> Dict[str, floa
 
 
 def test_every_category_exports_and_loads_without_warnings(
-    exported: Path, kinematics: List[Dict[str, Any]], caplog: pytest.LogCaptureFixture
+    exported: Path,
+    kinematics: List[Dict[str, Any]],
+    categories: List[str],
+    caplog: pytest.LogCaptureFixture,
 ) -> None:
     index = json.loads((exported / "objects.json").read_text())
     assert [o["folder"] for o in index] == [o["folder"] for o in kinematics]
-    categories = {o["category"] for o in index}
-    assert len(categories) == OBJECTS, "one object of every test category"
+    assert [o["category"] for o in index] == categories, "one object of every category"
+    assert len(categories) >= 39
     for entry in index:
         folder = exported / entry["folder"]
         caplog.clear()
@@ -125,7 +135,7 @@ def normaliser(centre: np.ndarray, scale: float) -> np.ndarray:
 
 @pytest.mark.parametrize("kind", ["sf2f", "sp2p"])
 def test_recorded_configurations_and_poses_reproduce_every_motion(
-    exported: Path, tmp_path: Path, kind: str
+    exported: Path, categories: List[str], tmp_path: Path, kind: str
 ) -> None:
     dataset = tmp_path / f"from-urdf-{kind}"
     run_cargo(
@@ -168,4 +178,4 @@ def test_recorded_configurations_and_poses_reproduce_every_motion(
             matched.add(k)
         assert matched == set(range(len(motions))), f"{pair.id}: every part has a link"
         checked += 1
-    assert checked == OBJECTS * 5
+    assert checked == len(categories) * 5
