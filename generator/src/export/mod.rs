@@ -12,4 +12,4 @@ pub mod objects;
 pub mod output;
 pub mod urdf;
 
-pub use output::{OutputError, Staging};
+pub use output::{write_file, OutputError, Staging};

@@ -13,12 +13,12 @@
 //! the same pairs as the built-in objects did.
 
 use std::collections::BTreeMap;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use rayon::prelude::*;
 use serde::Serialize;
 
-use super::output::{OutputError, Staging};
+use super::output::{write_file, OutputError, Staging};
 use super::urdf::{link_name, mesh_path, mobility_json, obj_text, urdf_text};
 use crate::config::GeneratorConfig;
 use crate::generate::{configuration, object_states, GENERATOR_VERSION};
@@ -37,14 +37,6 @@ pub enum ExportError {
     /// The output folder cannot be written.
     #[error(transparent)]
     Output(#[from] OutputError),
-    /// Writing a file failed.
-    #[error("writing {path}: {source}")]
-    Write {
-        /// The file.
-        path: PathBuf,
-        /// The failure.
-        source: std::io::Error,
-    },
     /// Nothing to export.
     #[error("no objects to export")]
     Empty,
@@ -180,8 +172,7 @@ pub fn write_object(
     let folder = folder_name(item.object_id, &object.category);
     let dir = root.join(&folder);
     let meshes = dir.join("textured_objs");
-    std::fs::create_dir_all(&meshes)
-        .map_err(|source| ExportError::Write { path: meshes.clone(), source })?;
+    std::fs::create_dir_all(&meshes).map_err(OutputError::io(&meshes))?;
     write(&dir.join("mobility.urdf"), urdf_text(object).as_bytes())?;
     for (i, link) in object.links.iter().enumerate() {
         write(&dir.join(mesh_path(i)), obj_text(&link.mesh, &link.name).as_bytes())?;
@@ -231,5 +222,6 @@ fn pretty<T: Serialize>(value: &T) -> String {
 }
 
 fn write(path: &Path, bytes: &[u8]) -> Result<(), ExportError> {
-    std::fs::write(path, bytes).map_err(|source| ExportError::Write { path: path.into(), source })
+    write_file(path, bytes)?;
+    Ok(())
 }

@@ -36,6 +36,12 @@ impl OutputError {
     }
 }
 
+/// Writes `bytes` to `path` (a file of an export); returns the size written.
+pub fn write_file(path: &Path, bytes: &[u8]) -> Result<u64, OutputError> {
+    std::fs::write(path, bytes).map_err(OutputError::io(path))?;
+    Ok(bytes.len() as u64)
+}
+
 /// A staging folder for the output folder `target`: write into [`Staging::path`], then
 /// [`Staging::commit`]. Dropped without a commit, it removes itself and leaves `target`
 /// untouched.

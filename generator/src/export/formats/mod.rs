@@ -23,7 +23,7 @@ use std::path::{Path, PathBuf};
 use pairs::dataset::Dataset;
 use pairs::DatasetError;
 
-use super::output::{OutputError, Staging};
+use super::output::{write_file, OutputError, Staging};
 
 /// An export layout.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -86,14 +86,6 @@ pub enum FormatError {
     /// The output folder cannot be written (not empty without force, not a folder, ...).
     #[error(transparent)]
     Output(#[from] OutputError),
-    /// Writing an output file failed.
-    #[error("writing {path}: {source}")]
-    Write {
-        /// The file.
-        path: PathBuf,
-        /// The failure.
-        source: std::io::Error,
-    },
     /// The dataset's manifest lacks what the format needs.
     #[error("{path}: {reason}")]
     Manifest {
@@ -130,13 +122,6 @@ pub enum FormatError {
         /// The dataset folder.
         dataset: PathBuf,
     },
-}
-
-/// Writes `bytes` to `path`; returns the size written.
-fn write_file(path: &Path, bytes: &[u8]) -> Result<u64, FormatError> {
-    std::fs::write(path, bytes)
-        .map_err(|source| FormatError::Write { path: path.into(), source })?;
-    Ok(bytes.len() as u64)
 }
 
 /// MultiBodySync's name of the dataset's split (`config.split` of the manifest):

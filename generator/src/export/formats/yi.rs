@@ -20,7 +20,8 @@ use std::path::Path;
 
 use pairs::Pair;
 
-use super::{mat, write_file, FormatError};
+use super::{mat, FormatError};
+use crate::export::output::{write_file, OutputError};
 
 /// What the pairs' arrays are stacked into, row-major (pair, point, coordinate).
 #[derive(Debug, Default)]
@@ -115,7 +116,7 @@ fn write_mat(
     path: &Path,
     body: impl FnOnce(&mut BufWriter<File>) -> std::io::Result<()>,
 ) -> Result<u64, FormatError> {
-    let io = |source| FormatError::Write { path: path.into(), source };
+    let io = |source| FormatError::Output(OutputError::Io { path: path.into(), source });
     let mut w = BufWriter::with_capacity(1 << 20, File::create(path).map_err(io)?);
     mat::write_header(
         &mut w,
