@@ -8,7 +8,7 @@ use burn::tensor::activation;
 
 use crate::backbone::Backbone;
 use crate::config::NetworkConfig;
-use crate::pointnet::{relu_layer, Head, SharedMlp};
+use crate::pointnet::{linear, relu_layer, Head, SharedMlp};
 use crate::sampling::SamplingError;
 
 /// What the module outputs for a batch of pairs.
@@ -64,8 +64,8 @@ impl CorrespondenceModule {
         let both = self.features.forward(Tensor::cat(vec![p, q], 0), None)?; // [2 batch, m, d]
         let u_p = both.clone().narrow(0, 0, batch);
         let u_q = both.narrow(0, batch, batch);
-        let a = self.pair_p.forward(u_p).unsqueeze_dim::<4>(2); // [batch, m, 1, w]
-        let b = self.pair_q.forward(u_q).unsqueeze_dim::<4>(1); // [batch, 1, m, w]
+        let a = linear(&self.pair_p, u_p).unsqueeze_dim::<4>(2); // [batch, m, 1, w]
+        let b = linear(&self.pair_q, u_q).unsqueeze_dim::<4>(1); // [batch, 1, m, w]
         let h = self.pair.forward(activation::relu(a + b)); // [batch, m, m, w]
         let logits = self.score.forward(h.clone()).reshape([batch, m, m]);
         let mask_logits = self.mask.forward(h.max_dim(2)).reshape([batch, m]);

@@ -27,6 +27,29 @@ pub fn relu_layer(input: usize, output: usize) -> LinearConfig {
     })
 }
 
+/// `layer` applied to the last dimension of `x`. In training (the layer's weights track
+/// gradients) it is one matrix product on the flattened rows (`[rows, input] x [input,
+/// output]`): burn's `Linear` on a rank-3 or rank-4 tensor runs one small product per
+/// leading index (a thousand `[128, C]` products for a pair tensor, and as many again in the
+/// backward pass, each followed by a reduction of the weight gradient), where one product
+/// does the same arithmetic in less time (stage 1 steps 1.2x faster). Inference keeps
+/// burn's per-index products: the flattened product can round the last bit of an output
+/// differently (the blocking of the matrix product depends on the row count), and the
+/// committed boards were computed with the per-index ones.
+///
+/// # Shapes
+/// `[..., input]` -> `[..., output]`
+pub fn linear<const D: usize>(layer: &Linear, x: Tensor<D>) -> Tensor<D> {
+    let mut dims = x.dims();
+    if D <= 2 || !layer.weight.val().is_require_grad() {
+        return layer.forward(x);
+    }
+    let rows: usize = dims[..D - 1].iter().product();
+    let y = layer.forward(x.reshape([rows, dims[D - 1]]));
+    dims[D - 1] = y.dims()[1];
+    y.reshape(dims)
+}
+
 /// A shared MLP: the same `Linear` + layer norm + ReLU layers applied to every point (or
 /// pair).
 ///
@@ -63,7 +86,7 @@ impl SharedMlp {
         self.layers
             .iter()
             .zip(&self.norms)
-            .fold(x, |x, (layer, norm)| activation::relu(norm.forward(layer.forward(x))))
+            .fold(x, |x, (layer, norm)| activation::relu(norm.forward(linear(layer, x))))
     }
 }
 
@@ -103,7 +126,7 @@ impl Head {
     /// # Shapes
     /// `[..., input]` -> `[..., output]`
     pub fn forward<const D: usize>(&self, x: Tensor<D>) -> Tensor<D> {
-        self.out.forward(self.hidden.forward(x))
+        linear(&self.out, self.hidden.forward(x))
     }
 }
 
@@ -338,6 +361,34 @@ mod tests {
 
     fn tensor(values: Vec<f32>, shape: [usize; 3], device: &Device) -> Tensor<3> {
         Tensor::from_data(TensorData::new(values, shape), device)
+    }
+
+    #[test]
+    fn linear_on_flattened_rows_is_burns_linear_with_the_same_gradients() {
+        // In training the rows are flattened into one product: the same dot products, and
+        // the same weight gradients up to the order of the sums.
+        let device = Device::flex().autodiff();
+        let layer = relu_layer(32, 48).init(&device);
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(3);
+        let values: Vec<f32> =
+            (0..4 * 16 * 16 * 32).map(|_| rng.random_range(-1.0f32..1.0)).collect();
+        let pairs = Tensor::<4>::from_data(TensorData::new(values, [4, 16, 16, 32]), &device);
+        let floats =
+            |t: Tensor<4>| t.into_data().convert::<f32>().try_to_vec::<f32>().expect("f32");
+        let ours = linear(&layer, pairs.clone());
+        let burns = layer.forward(pairs);
+        assert_eq!(ours.dims(), [4, 16, 16, 48]);
+        for (a, b) in floats(ours.clone()).iter().zip(floats(burns.clone())) {
+            assert!((a - b).abs() <= 1e-5 * (1.0 + b.abs()), "{a} vs {b}");
+        }
+        let grad = |out: Tensor<4>| {
+            let grads = (out.clone() * out).sum().backward();
+            let g = layer.weight.grad(&grads).expect("a weight gradient");
+            g.into_data().convert::<f32>().try_to_vec::<f32>().expect("f32")
+        };
+        for (a, b) in grad(ours).iter().zip(grad(burns)) {
+            assert!((a - b).abs() <= 1e-3 * (1.0 + b.abs()), "{a} vs {b}");
+        }
     }
 
     fn rows(t: Tensor<3>) -> Vec<Vec<f32>> {
