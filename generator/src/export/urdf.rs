@@ -68,7 +68,12 @@ pub fn urdf_text(object: &ArticulatedObject) -> String {
     let mut out = String::new();
     let _ = writeln!(out, r#"<?xml version="1.0"?>"#);
     let _ = writeln!(out, r#"<robot name="{}">"#, escape(&object.category));
-    let _ = writeln!(out, r#"  <link name="{BASE_LINK}"/>"#);
+    // The base carries a token inertial: simulators warn about (and PyBullet invents a unit
+    // mass for) a link without one; a fixed base ignores it.
+    let _ = writeln!(
+        out,
+        r#"  <link name="{BASE_LINK}"><inertial><origin xyz="0 0 0" rpy="0 0 0"/><mass value="0.001"/><inertia ixx="1e-9" ixy="0" ixz="0" iyy="1e-9" iyz="0" izz="1e-9"/></inertial></link>"#
+    );
     for (i, link) in object.links.iter().enumerate() {
         let _ = writeln!(out, r#"  <link name="{}">"#, link_name(i));
         let back = origins[i].coords.map(|c| 0.0 - f64::from(c));
