@@ -1,8 +1,8 @@
 //! An articulated object as PartNet-Mobility files: `mobility.urdf`, one OBJ mesh per link
 //! and the `mobility_v2.json` joint annotation.
 //!
-//! The layout follows PartNet-Mobility (SAPIEN): a `base` link without geometry, welded by a fixed
-//! joint to `link_0` (the object's root part); `link_i` is the object's link `i`, its frame
+//! The layout follows PartNet-Mobility (SAPIEN): a `base` link without geometry, welded by a
+//! fixed joint to `link_0` (the object's root part); `link_i` is the object's link `i`, its frame
 //! on its joint's axis (at the pivot), with no rotation; meshes stay in the object's rest
 //! frame and each visual's origin moves them into the link frame, as PartNet-Mobility's
 //! meshes do. Joints keep the object's names; a revolute joint turns its child by the
