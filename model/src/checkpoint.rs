@@ -27,19 +27,24 @@ pub struct Best {
     pub rand_index: f64,
     /// Validation IoU.
     pub iou: f64,
+    /// Validation support IoU on the true flow (absent in checkpoints written before it
+    /// was measured).
+    #[serde(default)]
+    pub support_iou: Option<f64>,
 }
 
 impl Best {
-    /// Whether `self` beats `other`: a later stage wins; within stage 3 a higher IoU, before
-    /// it (when segments are not trained yet) a lower EPE.
+    /// Whether `self` beats `other`, by the stage's own metric: a later stage wins; within
+    /// stage 1 a lower EPE, within stage 2 (the segmentation module on the true flow) a
+    /// higher support IoU (a measured one beats none), within stage 3 a higher IoU.
     pub fn beats(&self, other: &Best) -> bool {
         if self.stage != other.stage {
             return self.stage > other.stage;
         }
-        if self.stage == 3 {
-            self.iou > other.iou
-        } else {
-            self.epe < other.epe
+        match self.stage {
+            1 => self.epe < other.epe,
+            2 => self.support_iou.is_some_and(|s| other.support_iou.is_none_or(|o| s > o)),
+            _ => self.iou > other.iou,
         }
     }
 }
@@ -198,5 +203,38 @@ impl CheckpointDir {
         let text = serde_json::to_string_pretty(state).expect("the state serialises");
         std::fs::write(&tmp, text).map_err(io(&tmp))?;
         std::fs::rename(&tmp, &path).map_err(io(&path))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Best;
+
+    fn best(stage: u8, epe: f64, iou: f64, support_iou: Option<f64>) -> Best {
+        Best { stage, pairs: 0, epe, rand_index: 0.5, iou, support_iou }
+    }
+
+    #[test]
+    fn each_stage_is_judged_by_its_own_metric() {
+        // A later stage wins whatever its scores.
+        assert!(best(2, 0.9, 0.1, None).beats(&best(1, 0.1, 0.9, None)));
+        // Stage 1: EPE.
+        assert!(best(1, 0.05, 0.1, None).beats(&best(1, 0.06, 0.9, None)));
+        assert!(!best(1, 0.06, 0.9, None).beats(&best(1, 0.05, 0.1, None)));
+        // Stage 2: support IoU; a measured one beats a checkpoint from before it was.
+        assert!(best(2, 0.1, 0.2, Some(0.6)).beats(&best(2, 0.1, 0.2, Some(0.5))));
+        assert!(!best(2, 0.1, 0.2, Some(0.5)).beats(&best(2, 0.1, 0.2, Some(0.6))));
+        assert!(best(2, 0.1, 0.2, Some(0.1)).beats(&best(2, 0.1, 0.2, None)));
+        assert!(!best(2, 0.1, 0.2, None).beats(&best(2, 0.1, 0.2, Some(0.1))));
+        // Stage 3: IoU.
+        assert!(best(3, 0.2, 0.5, None).beats(&best(3, 0.1, 0.4, Some(0.9))));
+    }
+
+    #[test]
+    fn a_best_written_before_the_support_iou_still_reads() {
+        let old = r#"{"stage":2,"pairs":110000,"epe":0.069,"rand_index":0.513,"iou":0.227}"#;
+        let read: Best = serde_json::from_str(old).expect("old record reads");
+        assert_eq!(read.support_iou, None);
+        assert_eq!(read.pairs, 110_000);
     }
 }

@@ -64,7 +64,7 @@ fn io(path: &Path) -> impl FnOnce(std::io::Error) -> LogError + '_ {
 }
 
 const STEP_HEADER: &str = "step,pairs,stage,learning_rate,loss";
-const VALIDATION_HEADER: &str = "step,pairs,stage,epe,rand_index,iou";
+const VALIDATION_HEADER: &str = "step,pairs,stage,epe,rand_index,iou,support_iou";
 
 /// The open log of a run.
 #[derive(Debug)]
@@ -76,20 +76,25 @@ pub struct Log {
 }
 
 /// Keeps the rows of `path` up to step `last` (the first column), rewriting the file, and
-/// opens it for appending; returns the kept rows.
+/// opens it for appending; returns the kept rows. Rows with fewer fields than `header` (from
+/// a log written before a column was added) get empty fields, read back as NaN.
 fn reopen(
     path: &Path,
     header: &str,
     last: u64,
 ) -> Result<(BufWriter<File>, Vec<Vec<f64>>), LogError> {
     let mut kept = Vec::new();
+    let columns = header.split(',').count();
     if path.exists() {
         let file = File::open(path).map_err(io(path))?;
         for line in BufReader::new(file).lines().skip(1) {
             let line = line.map_err(io(path))?;
-            let fields: Vec<f64> = line.split(',').map(|f| f.parse().unwrap_or(f64::NAN)).collect();
+            let mut fields: Vec<f64> =
+                line.split(',').map(|f| f.parse().unwrap_or(f64::NAN)).collect();
             if fields.first().is_some_and(|&s| s <= last as f64) {
-                kept.push((line, fields));
+                let missing = columns.saturating_sub(fields.len());
+                fields.resize(fields.len() + missing, f64::NAN);
+                kept.push((format!("{line}{}", ",".repeat(missing)), fields));
             }
         }
     }
@@ -123,7 +128,7 @@ impl Log {
             curves.loss.push((r[1], r[2] as u8, r[4]));
         }
         for r in vrows {
-            curves.validation.push((r[1], r[3], r[5]));
+            curves.validation.push((r[1], r[3], r[5], r[6]));
         }
         Ok(Self { dir: dir.to_path_buf(), steps, validations, curves })
     }
@@ -155,12 +160,12 @@ impl Log {
         let path = self.dir.join("validation.csv");
         writeln!(
             self.validations,
-            "{},{},{},{},{},{}",
-            row.step, row.pairs, row.stage, s.epe, s.rand_index, s.iou
+            "{},{},{},{},{},{},{}",
+            row.step, row.pairs, row.stage, s.epe, s.rand_index, s.iou, s.support_iou
         )
         .map_err(io(&path))?;
         self.validations.flush().map_err(io(&path))?;
-        self.curves.validation.push((row.pairs as f64, s.epe, s.iou));
+        self.curves.validation.push((row.pairs as f64, s.epe, s.iou, s.support_iou));
         Ok(())
     }
 
@@ -171,5 +176,31 @@ impl Log {
         let png = self.dir.join("loss.png");
         draw_loss_curves(&self.curves, &png)
             .map_err(|message| LogError::Plot { path: png.clone(), message })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn resume_drops_lost_rows_and_pads_rows_of_an_older_header() {
+        let dir = tempfile::tempdir().expect("temporary folder");
+        let path = dir.path().join("validation.csv");
+        std::fs::write(
+            &path,
+            "step,pairs,stage,epe,rand_index,iou\n10,80,1,0.5,0.6,0.2\n20,160,2,0.4,0.6,0.2\n",
+        )
+        .expect("old log");
+        let mut log = Log::open(dir.path(), 15).expect("reopens");
+        assert_eq!(log.curves.validation.len(), 1);
+        assert!(log.curves.validation[0].3.is_nan());
+        let scores = Scores { epe: 0.25, rand_index: 0.75, iou: 0.5, support_iou: 0.625 };
+        log.validation(&ValidationRow { step: 30, pairs: 240, stage: 2, scores }).expect("row");
+        let text = std::fs::read_to_string(&path).expect("log");
+        assert_eq!(
+            text,
+            "step,pairs,stage,epe,rand_index,iou,support_iou\n10,80,1,0.5,0.6,0.2,\n30,240,2,0.25,0.75,0.5,0.625\n"
+        );
     }
 }

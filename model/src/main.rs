@@ -59,7 +59,7 @@ enum Command {
         #[arg(long, value_enum, default_value_t = DeviceKind::Cpu)]
         device: DeviceKind,
     },
-    /// Score weights on the config's validation set (EPE, Rand index, IoU).
+    /// Score weights on the config's validation set (EPE, Rand index, IoU, support IoU).
     Validate {
         /// Config file, or a built-in name; its network sizes must match the weights.
         #[arg(long)]
@@ -214,8 +214,8 @@ fn main() -> Result<()> {
                     bar.set_position(p.row.pairs);
                     let v = p.validation.map_or(String::new(), |v| {
                         format!(
-                            " | val EPE {:.3} RI {:.3} IoU {:.3}",
-                            v.scores.epe, v.scores.rand_index, v.scores.iou
+                            " | val EPE {:.3} RI {:.3} IoU {:.3} support IoU {:.3}",
+                            v.scores.epe, v.scores.rand_index, v.scores.iou, v.scores.support_iou
                         )
                     });
                     bar.set_message(format!("stage {} loss {:.4}{v}", p.row.stage, p.row.loss));
@@ -255,11 +255,12 @@ fn main() -> Result<()> {
             .context("generating the validation pairs")?;
             let s = score(&net, &pairs)?;
             println!(
-                "{} validation pairs: EPE {:.4}, RI {:.4}, IoU {:.4}",
+                "{} validation pairs: EPE {:.4}, RI {:.4}, IoU {:.4}, support IoU on the true flow {:.4}",
                 pairs.len(),
                 s.epe,
                 s.rand_index,
-                s.iou
+                s.iou,
+                s.support_iou
             );
         }
         Command::Infer { p, q, out, run } => {

@@ -1,6 +1,7 @@
 //! The loss-curve PNG of a training run. Left: the training loss (log scale, smoothed over
 //! 50 steps) against training pairs, coloured by stage (1 blue, 2 orange, 3 green). Right:
-//! validation EPE (purple) and 1 - IoU (red) against training pairs, linear scale from 0.
+//! validation EPE (purple), 1 - IoU (red) and 1 - support IoU (orange, where the log has
+//! it) against training pairs, linear scale from 0.
 //! Drawn without text, so no font is needed; the CSVs beside it hold the numbers.
 
 use std::path::Path;
@@ -12,8 +13,9 @@ use plotters::prelude::*;
 pub struct Curves {
     /// (pairs, stage, loss) per step.
     pub loss: Vec<(f64, u8, f64)>,
-    /// (pairs, EPE, IoU) per validation.
-    pub validation: Vec<(f64, f64, f64)>,
+    /// (pairs, EPE, IoU, support IoU) per validation; the support IoU is NaN in rows
+    /// written before it was logged.
+    pub validation: Vec<(f64, f64, f64, f64)>,
 }
 
 const STAGE_COLOURS: [RGBColor; 3] =
@@ -62,5 +64,9 @@ pub fn draw_loss_curves(curves: &Curves, path: &Path) -> Result<(), String> {
     chart.draw_series(LineSeries::new(epe, &RGBColor(148, 103, 189))).map_err(|e| e.to_string())?;
     let miss = curves.validation.iter().map(|v| (v.0, 1.0 - v.2));
     chart.draw_series(LineSeries::new(miss, &RGBColor(214, 39, 40))).map_err(|e| e.to_string())?;
+    let support = curves.validation.iter().filter(|v| v.3.is_finite()).map(|v| (v.0, 1.0 - v.3));
+    chart
+        .draw_series(LineSeries::new(support, &RGBColor(255, 127, 14)))
+        .map_err(|e| e.to_string())?;
     root.present().map_err(|e| e.to_string())
 }

@@ -42,6 +42,15 @@ pub(crate) fn interpolate(
     Ok(out)
 }
 
+/// What the segmentation module reads of a pair: P's subsets, their points and the
+/// `[1, m, 3]` tensors of the points and of the flow on them.
+struct SegmentationInput {
+    prep: Prepared,
+    p_m: Vec<[f32; 3]>,
+    p: Tensor<3>,
+    flow: Tensor<3>,
+}
+
 impl PartNet {
     /// The device the network's parameters live on.
     pub(crate) fn device(&self) -> Device {
@@ -63,13 +72,13 @@ impl PartNet {
         Ok((flow, interpolate(&prep.p, &p_m, &mask, 1)?))
     }
 
-    /// The segmentation module's soft probabilities on every point of P given a flow on P
-    /// (one row per point, one column per RPEN step kept by the continuation score).
-    pub fn soft_segments(
+    /// P's correspondence subset and the given flow of P on it, as the segmentation module
+    /// reads them.
+    fn segmentation_input(
         &self,
         input: &PairInput,
         flow: &[Vector3],
-    ) -> Result<Vec<Vec<f32>>, SamplingError> {
+    ) -> Result<SegmentationInput, SamplingError> {
         let device = self.device();
         let prep = Prepared::new(input, self.corr_points(), &Matrix3::identity())?;
         let p_m = prep.p_points();
@@ -81,6 +90,33 @@ impl PartNet {
         let p = points_tensor(std::slice::from_ref(&p_m), &device);
         let m = p_m.len();
         let f = Tensor::<1>::from_floats(subset_flow.as_slice(), &device).reshape([1, m, 3]); // [1, m, 3]
+        Ok(SegmentationInput { prep, p_m, p, flow: f })
+    }
+
+    /// The support module's probabilities given a flow on P, on the segmentation subset of
+    /// `s` points: the subset's indices into P and an `s × s` row-major matrix whose row `i`
+    /// is the hypothesis seeded at subset point `i` and column `j` subset point `j` (what
+    /// stage 2 trains towards "`j` is in the part of `i`"). No RPEN step runs.
+    pub fn supports(
+        &self,
+        input: &PairInput,
+        flow: &[Vector3],
+    ) -> Result<(Vec<usize>, Vec<f32>), SamplingError> {
+        let SegmentationInput { prep, p, flow: f, .. } = self.segmentation_input(input, flow)?;
+        let seg = self.segment(p, f, 0)?;
+        let mut subset = prep.p_subset;
+        subset.truncate(self.seg_points());
+        Ok((subset, floats(activation::sigmoid(seg.support_logits))))
+    }
+
+    /// The segmentation module's soft probabilities on every point of P given a flow on P
+    /// (one row per point, one column per RPEN step kept by the continuation score).
+    pub fn soft_segments(
+        &self,
+        input: &PairInput,
+        flow: &[Vector3],
+    ) -> Result<Vec<Vec<f32>>, SamplingError> {
+        let SegmentationInput { prep, p_m, p, flow: f } = self.segmentation_input(input, flow)?;
         let steps = self.max_segments();
         let seg = self.segment(p, f, steps)?;
         let segments = seg.segments.expect("max_segments is at least 1");

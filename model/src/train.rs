@@ -405,6 +405,7 @@ impl Trainer {
             epe: scores.epe,
             rand_index: scores.rand_index,
             iou: scores.iou,
+            support_iou: Some(scores.support_iou),
         };
         if self.state.best.is_none_or(|b| best.beats(&b)) {
             let root = self.paths.checkpoints.root();

@@ -1,13 +1,16 @@
 //! The fixed validation set (pairs of the validation categories) and the scores the trainer
 //! reports on it: EPE, Rand index and matched IoU (`pairs::metrics`), from the same
-//! single-pass prediction the evaluator scores.
+//! single-pass prediction the evaluator scores; and the support IoU, the segmentation
+//! module's hypotheses and supports on the true flow, which is what stage 2 trains (the
+//! single pass takes its labels from RPEN steps that only stage 3 trains, so it cannot
+//! tell one stage-2 network from another).
 
 use generator::categories::Split;
 use generator::config::GeneratorConfig;
 use generator::generate::{object_pairs_with, GenerateError, Variant};
 use pairs::metrics::{epe, matched_iou, rand_index};
-use pairs::Pair;
 use pairs::PairKind;
+use pairs::{Pair, PartId};
 
 use crate::network::PartNet;
 use crate::sampling::SamplingError;
@@ -63,6 +66,8 @@ pub struct Scores {
     pub rand_index: f64,
     /// Matched IoU averaged over every ground-truth part of every pair.
     pub iou: f64,
+    /// Support IoU on the true flow, averaged over pairs ([`support_iou`]).
+    pub support_iou: f64,
 }
 
 /// Why scoring failed.
@@ -91,6 +96,7 @@ pub enum ScoreError {
 /// Scores the network's single-pass predictions on `pairs`.
 pub fn score(net: &PartNet, pairs: &[Pair]) -> Result<Scores, ScoreError> {
     let (mut epe_sum, mut ri_sum, mut iou_sum, mut parts) = (0.0, 0.0, 0.0, 0usize);
+    let mut support_sum = 0.0;
     for pair in pairs {
         let id = || pair.id().to_string();
         let prediction = net
@@ -104,7 +110,63 @@ pub fn score(net: &PartNet, pairs: &[Pair]) -> Result<Scores, ScoreError> {
         let matching = matched_iou(&prediction.segments_p, &truth.part_p).map_err(metric)?;
         iou_sum += matching.iou.iter().sum::<f64>();
         parts += matching.iou.len();
+        let (subset, probs) = net
+            .supports(pair.input(), &truth.flow)
+            .map_err(|source| ScoreError::Predict { pair: id(), source })?;
+        let parts_s: Vec<PartId> = subset.iter().map(|&i| truth.part_p[i]).collect();
+        support_sum += support_iou(&probs, &parts_s);
     }
     let n = pairs.len().max(1) as f64;
-    Ok(Scores { epe: epe_sum / n, rand_index: ri_sum / n, iou: iou_sum / parts.max(1) as f64 })
+    Ok(Scores {
+        epe: epe_sum / n,
+        rand_index: ri_sum / n,
+        iou: iou_sum / parts.max(1) as f64,
+        support_iou: support_sum / n,
+    })
+}
+
+/// How well the supports pick out parts: for every hypothesis `i` (one per point of the
+/// subset), the IoU of the points it supports (probability above one half) with the points
+/// of the part of `i`, averaged over hypotheses. 1 when every hypothesis supports exactly its
+/// part; a module that supports everything scores the mean fraction of the subset in a
+/// point's part. `probs` holds `parts.len()` squared values, row-major, as
+/// [`PartNet::supports`] returns them.
+pub fn support_iou(probs: &[f32], parts: &[PartId]) -> f64 {
+    let s = parts.len();
+    if s == 0 {
+        return 0.0;
+    }
+    let mut total = 0.0;
+    for (row, &own) in probs.chunks(s).zip(parts) {
+        let (mut inter, mut union) = (0usize, 0usize);
+        for (&p, &part) in row.iter().zip(parts) {
+            let (predicted, truth) = (p > 0.5, part == own);
+            inter += usize::from(predicted && truth);
+            union += usize::from(predicted || truth);
+        }
+        total += inter as f64 / union.max(1) as f64;
+    }
+    total / s as f64
+}
+
+#[cfg(test)]
+mod tests {
+    use super::support_iou;
+
+    #[test]
+    fn support_iou_on_hand_computed_cases() {
+        // Parts [0, 0, 1]: supports that pick exactly each point's part score 1.
+        let parts = [0, 0, 1];
+        let perfect = [0.9, 0.8, 0.1, 0.7, 0.6, 0.2, 0.3, 0.4, 0.9];
+        assert!((support_iou(&perfect, &parts) - 1.0).abs() < 1e-12);
+        // Everything supported: the rows of part 0 have IoU 2/3, the row of part 1 1/3.
+        let everything = (2.0 / 3.0 + 2.0 / 3.0 + 1.0 / 3.0) / 3.0;
+        assert!((support_iou(&[0.9; 9], &parts) - everything).abs() < 1e-12);
+        // Nothing supported: every IoU is 0.
+        assert_eq!(support_iou(&[0.1; 9], &parts), 0.0);
+        // Row 0 supports only point 2 (IoU 0), the others are exact.
+        let mut one_wrong = perfect;
+        one_wrong[..3].copy_from_slice(&[0.1, 0.1, 0.9]);
+        assert!((support_iou(&one_wrong, &parts) - 2.0 / 3.0).abs() < 1e-12);
+    }
 }
