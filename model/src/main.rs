@@ -233,12 +233,13 @@ fn main() -> Result<()> {
             );
             if let Some(best) = state.best {
                 println!(
-                    "best validation (stage {}, {} pairs): EPE {:.4}, RI {:.4}, IoU {:.4} -> {}",
+                    "best validation (stage {}, {} pairs): EPE {:.4}, RI {:.4}, IoU {:.4}{} -> {}",
                     best.stage,
                     best.pairs,
                     best.epe,
                     best.rand_index,
                     best.iou,
+                    best.support_iou.map(|s| format!(", support IoU {s:.4}")).unwrap_or_default(),
                     paths.checkpoints.best().display()
                 );
             }
