@@ -39,6 +39,7 @@ pub mod log;
 pub mod losses;
 pub mod method;
 pub mod network;
+pub mod norm;
 pub mod objective;
 pub mod plot;
 pub mod pointfile;
