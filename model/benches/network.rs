@@ -17,6 +17,29 @@ use pairs::math::Matrix3;
 #[global_allocator]
 static ALLOCATOR: tikv_jemallocator::Jemalloc = tikv_jemallocator::Jemalloc;
 
+/// The fused layer norm + ReLU of training (`model::norm`) on one pair tensor's worth of rows
+/// (4 pairs x 128 x 128 points, 64 channels).
+fn norm(c: &mut Criterion) {
+    let (rows, channels) = (4 * 128 * 128, 64);
+    let x: Vec<f32> =
+        (0..rows * channels).map(|i| ((i * 7919) % 1009) as f32 / 500.0 - 1.0).collect();
+    let grad: Vec<f32> = x.iter().map(|v| v * 0.5 - 0.1).collect();
+    let gamma: Vec<f32> = (0..channels).map(|i| 0.5 + i as f32 / channels as f32).collect();
+    let beta: Vec<f32> = (0..channels).map(|i| i as f32 / channels as f32 - 0.5).collect();
+    let mut group = c.benchmark_group("norm");
+    group.sample_size(20);
+    group
+        .bench_function("forward_65536x64", |b| b.iter(|| model::norm::forward(&x, &gamma, &beta)));
+    group.bench_function("backward_65536x64", |b| {
+        let mut dx = grad.clone();
+        b.iter(|| {
+            dx.copy_from_slice(&grad);
+            model::norm::backward(&x, &gamma, &beta, &mut dx)
+        })
+    });
+    group.finish();
+}
+
 fn bench(c: &mut Criterion) {
     let mut group = c.benchmark_group("network");
     group.sample_size(10);
@@ -57,5 +80,5 @@ fn bench(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, bench);
+criterion_group!(benches, norm, bench);
 criterion_main!(benches);

@@ -106,21 +106,23 @@ impl<C: CheckpointStrategy> NormReluBackend for Autodiff<Flex, C> {
                 let [node_x, node_gamma, node_beta] = ops.parents;
                 let grad = grads.consume::<Flex>(&ops.node);
                 let (input, gamma, beta) = ops.state;
-                let shape = input.layout().shape().to_vec();
                 let channels = gamma.layout().shape().to_vec();
-                let (x, gamma, beta, grad) = (
-                    F32Rows::new(input),
-                    F32Rows::new(gamma),
-                    F32Rows::new(beta),
-                    F32Rows::new(grad),
+                let (x, gamma, beta) =
+                    (F32Rows::new(input), F32Rows::new(gamma), F32Rows::new(beta));
+                // The input's gradient overwrites the output's (copied first if shared).
+                let mut dx = grad.to_contiguous();
+                let (start, end) = dx.layout().contiguous_offsets().unwrap_or((0, 0));
+                let (dgamma, dbeta) = backward(
+                    x.values(),
+                    gamma.values(),
+                    beta.values(),
+                    &mut dx.storage_mut::<f32>()[start..end],
                 );
-                let (dx, dgamma, dbeta) =
-                    backward(x.values(), gamma.values(), beta.values(), grad.values());
                 let tensor = |values: Vec<f32>, shape: &[usize]| {
                     FlexTensor::from_data(TensorData::new(values, shape.to_vec()))
                 };
                 if let Some(node) = node_x {
-                    grads.register::<Flex>(node.id, tensor(dx, &shape));
+                    grads.register::<Flex>(node.id, dx);
                 }
                 if let Some(node) = node_gamma {
                     grads.register::<Flex>(node.id, tensor(dgamma, &channels));
@@ -195,70 +197,67 @@ pub fn forward(x: &[f32], gamma: &[f32], beta: &[f32]) -> Vec<f32> {
     if c == 0 {
         return out;
     }
+    let arch = pulp::Arch::new();
     out.par_chunks_mut(ROWS_PER_TASK * c).zip(x.par_chunks(ROWS_PER_TASK * c)).for_each(
         |(out, x)| {
-            for (o, row) in out.chunks_exact_mut(c).zip(x.chunks_exact(c)) {
-                let (mean, r) = statistics(row);
-                for (((o, &v), &g), &b) in o.iter_mut().zip(row).zip(gamma).zip(beta) {
-                    *o = ((v - mean) * r * g + b).max(0.0);
+            arch.dispatch(|| {
+                for (o, row) in out.chunks_exact_mut(c).zip(x.chunks_exact(c)) {
+                    let (mean, r) = statistics(row);
+                    for (((o, &v), &g), &b) in o.iter_mut().zip(row).zip(gamma).zip(beta) {
+                        *o = ((v - mean) * r * g + b).max(0.0);
+                    }
                 }
-            }
+            })
         },
     );
     out
 }
 
-/// The backward pass: the gradients of the input, `γ` and `β` for the output's gradient
-/// `grad`.
-pub fn backward(
-    x: &[f32],
-    gamma: &[f32],
-    beta: &[f32],
-    grad: &[f32],
-) -> (Vec<f32>, Vec<f32>, Vec<f32>) {
+/// The backward pass: overwrites the output's gradient `grad` with the input's, and returns
+/// the gradients of `γ` and `β`.
+pub fn backward(x: &[f32], gamma: &[f32], beta: &[f32], grad: &mut [f32]) -> (Vec<f32>, Vec<f32>) {
     let c = gamma.len();
-    let mut dx = vec![0.0f32; x.len()];
     if c == 0 {
-        return (dx, Vec::new(), Vec::new());
+        return (Vec::new(), Vec::new());
     }
     let block = ROWS_PER_TASK * c;
-    let partial: Vec<(Vec<f32>, Vec<f32>)> = dx
+    let arch = pulp::Arch::new();
+    let partial: Vec<(Vec<f32>, Vec<f32>)> = grad
         .par_chunks_mut(block)
         .zip(x.par_chunks(block))
-        .zip(grad.par_chunks(block))
-        .map(|((dx, x), grad)| {
-            let (mut dgamma, mut dbeta) = (vec![0.0f32; c], vec![0.0f32; c]);
-            let (mut xhat, mut ghat) = (vec![0.0f32; c], vec![0.0f32; c]);
-            for ((dx, row), g) in
-                dx.chunks_exact_mut(c).zip(x.chunks_exact(c)).zip(grad.chunks_exact(c))
-            {
-                let (mean, r) = statistics(row);
-                // x̂, the output's gradient where the output is positive (ReLU), and the
-                // γ, β gradients of this row.
-                for (((((((xh, gh), dg), db), &v), &g), &ga), &be) in xhat
-                    .iter_mut()
-                    .zip(ghat.iter_mut())
-                    .zip(dgamma.iter_mut())
-                    .zip(dbeta.iter_mut())
-                    .zip(row)
-                    .zip(g)
-                    .zip(gamma)
-                    .zip(beta)
-                {
-                    let h = (v - mean) * r;
-                    let g = if h * ga + be > 0.0 { g } else { 0.0 };
-                    *dg += g * h;
-                    *db += g;
-                    *xh = h;
-                    *gh = g * ga;
+        .map(|(grad, x)| {
+            arch.dispatch(|| {
+                let (mut dgamma, mut dbeta) = (vec![0.0f32; c], vec![0.0f32; c]);
+                let (mut xhat, mut ghat) = (vec![0.0f32; c], vec![0.0f32; c]);
+                for (g, row) in grad.chunks_exact_mut(c).zip(x.chunks_exact(c)) {
+                    let (mean, r) = statistics(row);
+                    // x̂, the output's gradient where the output is positive (ReLU), and the
+                    // γ, β gradients of this row.
+                    for (((((((xh, gh), dg), db), &v), &g), &ga), &be) in xhat
+                        .iter_mut()
+                        .zip(ghat.iter_mut())
+                        .zip(dgamma.iter_mut())
+                        .zip(dbeta.iter_mut())
+                        .zip(row)
+                        .zip(g.iter())
+                        .zip(gamma)
+                        .zip(beta)
+                    {
+                        let h = (v - mean) * r;
+                        let g = if h * ga + be > 0.0 { g } else { 0.0 };
+                        *dg += g * h;
+                        *db += g;
+                        *xh = h;
+                        *gh = g * ga;
+                    }
+                    let m1 = lane_sum(&ghat, &ghat, |g, _| g) / c as f32;
+                    let m2 = lane_sum(&ghat, &xhat, |g, h| g * h) / c as f32;
+                    for ((dx, &gh), &xh) in g.iter_mut().zip(&ghat).zip(&xhat) {
+                        *dx = r * (gh - m1 - xh * m2);
+                    }
                 }
-                let m1 = lane_sum(&ghat, &ghat, |g, _| g) / c as f32;
-                let m2 = lane_sum(&ghat, &xhat, |g, h| g * h) / c as f32;
-                for ((dx, &gh), &xh) in dx.iter_mut().zip(&ghat).zip(&xhat) {
-                    *dx = r * (gh - m1 - xh * m2);
-                }
-            }
-            (dgamma, dbeta)
+                (dgamma, dbeta)
+            })
         })
         .collect();
     let (mut dgamma, mut dbeta) = (vec![0.0f32; c], vec![0.0f32; c]);
@@ -266,7 +265,7 @@ pub fn backward(
         dgamma.iter_mut().zip(pg).for_each(|(a, b)| *a += b);
         dbeta.iter_mut().zip(pb).for_each(|(a, b)| *a += b);
     }
-    (dx, dgamma, dbeta)
+    (dgamma, dbeta)
 }
 
 #[cfg(test)]
@@ -287,11 +286,12 @@ mod tests {
         let x = x.clone().require_grad();
         let out = f(norm, x.clone());
         let grads = (out.clone() * weights.clone()).sum().backward();
-        let read =
-            |t: Option<Tensor<1>>| t.expect("a gradient").to_data().to_vec::<f32>().expect("f32");
+        let read = |t: Option<Tensor<1>>| {
+            t.expect("a gradient").to_data().try_to_vec::<f32>().expect("f32")
+        };
         [
-            out.to_data().to_vec().expect("f32"),
-            x.grad(&grads).expect("input gradient").to_data().to_vec().expect("f32"),
+            out.to_data().try_to_vec::<f32>().expect("f32"),
+            x.grad(&grads).expect("input gradient").to_data().try_to_vec::<f32>().expect("f32"),
             read(norm.gamma.grad(&grads)),
             read(norm.beta.as_ref().and_then(|b| b.grad(&grads))),
         ]
@@ -336,8 +336,10 @@ mod tests {
         let x = Tensor::<2>::random([70, 16], Distribution::Normal(0.0, 1.0), &device);
         let norm = LayerNormConfig::new(16).init(&device);
         assert!(!is_fused(&norm, &x));
-        let a: Vec<f32> = layer_norm_relu(&norm, x.clone()).to_data().to_vec().expect("f32");
-        let b: Vec<f32> = activation::relu(norm.forward(x)).to_data().to_vec().expect("f32");
+        let a: Vec<f32> =
+            layer_norm_relu(&norm, x.clone()).to_data().try_to_vec::<f32>().expect("f32");
+        let b: Vec<f32> =
+            activation::relu(norm.forward(x)).to_data().try_to_vec::<f32>().expect("f32");
         assert_eq!(a, b);
     }
 
@@ -353,9 +355,10 @@ mod tests {
         let grad: Vec<f32> = x.iter().map(|v| (v * 3.0).cos()).collect();
         let (gamma, beta) = (vec![0.9f32; 8], vec![0.1f32; 8]);
         let one = rayon::ThreadPoolBuilder::new().num_threads(1).build().expect("pool");
-        let a = one.install(|| backward(&x, &gamma, &beta, &grad));
+        let (mut da, mut db) = (grad.clone(), grad);
+        let a = one.install(|| backward(&x, &gamma, &beta, &mut da));
         let three = rayon::ThreadPoolBuilder::new().num_threads(3).build().expect("pool");
-        let b = three.install(|| backward(&x, &gamma, &beta, &grad));
-        assert_eq!(a, b);
+        let b = three.install(|| backward(&x, &gamma, &beta, &mut db));
+        assert_eq!((a, da), (b, db));
     }
 }
