@@ -26,15 +26,16 @@ fn norm(c: &mut Criterion) {
     let grad: Vec<f32> = x.iter().map(|v| v * 0.5 - 0.1).collect();
     let gamma: Vec<f32> = (0..channels).map(|i| 0.5 + i as f32 / channels as f32).collect();
     let beta: Vec<f32> = (0..channels).map(|i| i as f32 / channels as f32 - 0.5).collect();
+    let bias: Vec<f32> = beta.iter().map(|b| b * 0.1).collect();
+    let params = model::norm::Channels { bias: &bias, gamma: &gamma, beta: &beta };
     let mut group = c.benchmark_group("norm");
     group.sample_size(20);
-    group
-        .bench_function("forward_65536x64", |b| b.iter(|| model::norm::forward(&x, &gamma, &beta)));
+    group.bench_function("forward_65536x64", |b| b.iter(|| model::norm::forward(&x, &params)));
     group.bench_function("backward_65536x64", |b| {
         let mut dx = grad.clone();
         b.iter(|| {
             dx.copy_from_slice(&grad);
-            model::norm::backward(&x, &gamma, &beta, &mut dx)
+            model::norm::backward(&x, &params, &mut dx)
         })
     });
     group.finish();

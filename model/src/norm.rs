@@ -1,36 +1,40 @@
-//! Layer normalisation followed by ReLU as one operation with its own backward pass, for
-//! training on the CPU (the flex backend).
+//! A shared-MLP layer's bias, layer normalisation and ReLU as one operation with its own
+//! backward pass, for training on the CPU (the flex backend).
 //!
 //! Every layer of a [`crate::pointnet::SharedMlp`] is `Linear`, layer norm, ReLU. burn's
-//! autodiff records layer norm as the nine tensor operations it is made of (mean, centre,
-//! square, mean, add, square root, divide, scale, shift), and ReLU as one more, so a layer on a
-//! pair tensor of 16-67 MB made about ten passes over it forward and twice that backward:
-//! a `perf` profile of a stage-3 step put 35% of it in those operations. Here the forward
-//! pass is one sweep over the rows (each row's mean and variance, then the normalised,
-//! scaled, shifted and clipped values), and the backward pass one more: it keeps only
-//! references to the layer's input, `γ` and `β`, recomputes each row's statistics, and
-//! writes the input's gradient (the standard layer-norm gradient
-//! `r (ĝ - mean(ĝ) - x̂ mean(ĝ x̂))` with `ĝ = γ g` where the output is positive) while it
-//! sums the gradients of `γ` and `β`. Rows are cut into blocks of [`ROWS_PER_TASK`] whatever
-//! the thread count and the blocks' sums of the `γ` and `β` gradients are added in block
-//! order, so the result does not depend on the number of threads.
+//! autodiff records the bias as a broadcast addition, layer norm as the nine tensor
+//! operations it is made of (mean, centre, square, mean, add, square root, divide, scale,
+//! shift) and ReLU as one more, so a layer on a pair tensor of 16-67 MB made about eleven
+//! passes over it forward and twice that backward: a `perf` profile of a stage-3 step put
+//! 35% of it in those operations. Here the matrix product runs alone (one product on the
+//! flattened rows), and the rest is one sweep over the rows forward (each row plus the
+//! bias, its mean and variance, then the normalised, scaled, shifted and clipped values)
+//! and one backward: it keeps only the product's output and the three parameter vectors,
+//! recomputes each row's statistics, and writes the input's gradient over the output's
+//! (the standard layer-norm gradient `r (ĝ - mean(ĝ) - x̂ mean(ĝ x̂))` with `ĝ = γ g` where
+//! the output is positive) while it sums the gradients of the bias, `γ` and `β`. Rows are
+//! cut into blocks of [`ROWS_PER_TASK`] whatever the thread count, and the blocks' sums are
+//! added in block order, so the result does not depend on the number of threads; the loops
+//! are compiled for AVX2 and FMA as well and picked at run time (`pulp`).
 //!
-//! The operation gives the same values as burn's `LayerNorm` then `relu` up to rounding
-//! (tests compare values and all three gradients). [`layer_norm_relu`] uses it only where
-//! it is exact to say so: on the flex autodiff device, for `f32`, when the layer's weights
-//! track gradients; inference, and every other backend, keeps burn's operations, so the
-//! committed boards do not move by a rounding.
+//! The operation gives the same values as burn's `Linear`, `LayerNorm` and `relu` up to
+//! rounding (a test compares the values and all five gradients). [`linear_norm_relu`] uses
+//! it only on the flex autodiff device, for `f32`, when the layer's weights track
+//! gradients: inference, and every other backend, keeps burn's operations, so the committed
+//! boards do not move by a rounding.
 
 use burn::backend::autodiff::checkpoint::{base::Checkpointer, strategy::CheckpointStrategy};
 use burn::backend::autodiff::grads::Gradients;
 use burn::backend::autodiff::ops::{Backward, Ops, OpsKind};
 use burn::backend::autodiff::Autodiff;
 use burn::backend::{backend_extension, tensor::FloatTensor, Backend, Dispatch, Flex};
-use burn::nn::LayerNorm;
+use burn::nn::{LayerNorm, Linear};
 use burn::prelude::*;
 use burn::tensor::{activation, DType, TensorData};
 use burn_flex::FlexTensor;
 use rayon::prelude::*;
+
+use crate::pointnet::linear;
 
 /// `LayerNormConfig`'s default ε, which every layer of the network uses (a test checks the
 /// two agree).
@@ -42,106 +46,137 @@ pub const ROWS_PER_TASK: usize = 64;
 /// The fused operation as a backend extension: implemented for flex and for autodiff on flex.
 #[backend_extension(Flex, Autodiff)]
 pub trait NormReluBackend: Backend {
-    /// `relu(γ (x - mean) / sqrt(var + ε) + β)` over the last dimension.
+    /// `relu(γ (y - mean) / sqrt(var + ε) + β)` with `y = input + bias`, over the last
+    /// dimension.
     fn layer_norm_relu(
         input: FloatTensor<Self>,
+        bias: FloatTensor<Self>,
         gamma: FloatTensor<Self>,
         beta: FloatTensor<Self>,
     ) -> FloatTensor<Self>;
 }
 
-/// `relu(norm(x))` for one layer: fused on the flex autodiff device in training, burn's
-/// `LayerNorm` and `relu` everywhere else.
+/// One layer of a shared MLP, `relu(norm(layer(x)))`: on the flex autodiff device in
+/// training, one matrix product on the flattened rows and then the fused operation (which
+/// also adds the layer's bias); burn's `Linear`, `LayerNorm` and `relu` everywhere else.
 ///
 /// # Shapes
-/// `[..., channels]` -> `[..., channels]`
-pub fn layer_norm_relu<const D: usize>(norm: &LayerNorm, x: Tensor<D>) -> Tensor<D> {
-    match (&norm.beta, is_fused(norm, &x)) {
-        (Some(beta), true) => Tensor::from_dispatch(Dispatch::layer_norm_relu(
-            x.into_dispatch(),
-            norm.gamma.val().into_dispatch(),
-            beta.val().into_dispatch(),
-        )),
-        _ => activation::relu(norm.forward(x)),
+/// `[..., input]` -> `[..., output]`
+pub fn linear_norm_relu<const D: usize>(
+    layer: &Linear,
+    norm: &LayerNorm,
+    x: Tensor<D>,
+) -> Tensor<D> {
+    match (&layer.bias, &norm.beta, is_fused(layer, norm, &x)) {
+        (Some(bias), Some(beta), true) => {
+            let mut dims = x.dims();
+            let rows: usize = dims[..D - 1].iter().product();
+            let y = x.reshape([rows, dims[D - 1]]).matmul(layer.weight.val());
+            dims[D - 1] = y.dims()[1];
+            let out: Tensor<2> = Tensor::from_dispatch(Dispatch::layer_norm_relu(
+                y.into_dispatch(),
+                bias.val().into_dispatch(),
+                norm.gamma.val().into_dispatch(),
+                beta.val().into_dispatch(),
+            ));
+            out.reshape(dims)
+        }
+        _ => activation::relu(norm.forward(linear(layer, x))),
     }
 }
 
-/// Whether [`layer_norm_relu`] takes the fused operation for this layer and input: `f32` on
-/// the flex autodiff device, with `γ` tracking gradients and a `β`.
-pub fn is_fused<const D: usize>(norm: &LayerNorm, x: &Tensor<D>) -> bool {
-    norm.gamma.val().is_require_grad()
+/// Whether [`linear_norm_relu`] takes the fused operation for this layer and input: `f32`
+/// on the flex autodiff device, weights tracking gradients, a bias and a `β`.
+pub fn is_fused<const D: usize>(layer: &Linear, norm: &LayerNorm, x: &Tensor<D>) -> bool {
+    layer.weight.val().is_require_grad()
+        && layer.bias.is_some()
         && norm.beta.is_some()
         && x.dtype() == DType::F32
         && x.device().inner() == Device::flex()
 }
 
 impl NormReluBackend for Flex {
-    fn layer_norm_relu(input: FlexTensor, gamma: FlexTensor, beta: FlexTensor) -> FlexTensor {
+    fn layer_norm_relu(
+        input: FlexTensor,
+        bias: FlexTensor,
+        gamma: FlexTensor,
+        beta: FlexTensor,
+    ) -> FlexTensor {
         let shape = input.layout().shape().to_vec();
-        let (x, gamma, beta) = (F32Rows::new(input), F32Rows::new(gamma), F32Rows::new(beta));
-        let out = forward(x.values(), gamma.values(), beta.values());
-        FlexTensor::from_data(TensorData::new(out, shape))
+        let x = F32Rows::new(input);
+        let (bias, gamma, beta) = (F32Rows::new(bias), F32Rows::new(gamma), F32Rows::new(beta));
+        let channels = Channels { bias: bias.values(), gamma: gamma.values(), beta: beta.values() };
+        FlexTensor::from_data(TensorData::new(forward(x.values(), &channels), shape))
     }
 }
 
 impl<C: CheckpointStrategy> NormReluBackend for Autodiff<Flex, C> {
     fn layer_norm_relu(
         input: FloatTensor<Self>,
+        bias: FloatTensor<Self>,
         gamma: FloatTensor<Self>,
         beta: FloatTensor<Self>,
     ) -> FloatTensor<Self> {
-        /// The backward step; its state is the layer's input, `γ` and `β`.
+        /// The backward step; its state is the input and the three parameter vectors.
         #[derive(Debug)]
         struct NormRelu;
 
-        impl Backward<Flex, 3> for NormRelu {
-            type State = (FlexTensor, FlexTensor, FlexTensor);
+        impl Backward<Flex, 4> for NormRelu {
+            type State = [FlexTensor; 4];
 
             fn backward(
                 self,
-                ops: Ops<Self::State, 3>,
+                ops: Ops<Self::State, 4>,
                 grads: &mut Gradients,
                 _checkpointer: &mut Checkpointer,
             ) {
-                let [node_x, node_gamma, node_beta] = ops.parents;
+                let [node_x, node_bias, node_gamma, node_beta] = ops.parents;
                 let grad = grads.consume::<Flex>(&ops.node);
-                let (input, gamma, beta) = ops.state;
-                let channels = gamma.layout().shape().to_vec();
-                let (x, gamma, beta) =
-                    (F32Rows::new(input), F32Rows::new(gamma), F32Rows::new(beta));
+                let [input, bias, gamma, beta] = ops.state;
+                let shape = gamma.layout().shape().to_vec();
+                let x = F32Rows::new(input);
+                let (bias, gamma, beta) =
+                    (F32Rows::new(bias), F32Rows::new(gamma), F32Rows::new(beta));
+                let channels =
+                    Channels { bias: bias.values(), gamma: gamma.values(), beta: beta.values() };
                 // The input's gradient overwrites the output's (copied first if shared).
                 let mut dx = grad.to_contiguous();
                 let (start, end) = dx.layout().contiguous_offsets().unwrap_or((0, 0));
-                let (dgamma, dbeta) = backward(
-                    x.values(),
-                    gamma.values(),
-                    beta.values(),
-                    &mut dx.storage_mut::<f32>()[start..end],
-                );
-                let tensor = |values: Vec<f32>, shape: &[usize]| {
-                    FlexTensor::from_data(TensorData::new(values, shape.to_vec()))
-                };
+                let sums =
+                    backward(x.values(), &channels, &mut dx.storage_mut::<f32>()[start..end]);
                 if let Some(node) = node_x {
                     grads.register::<Flex>(node.id, dx);
                 }
-                if let Some(node) = node_gamma {
-                    grads.register::<Flex>(node.id, tensor(dgamma, &channels));
-                }
-                if let Some(node) = node_beta {
-                    grads.register::<Flex>(node.id, tensor(dbeta, &channels));
+                for (node, values) in [node_bias, node_gamma, node_beta].into_iter().zip(sums) {
+                    if let Some(node) = node {
+                        let tensor = FlexTensor::from_data(TensorData::new(values, shape.clone()));
+                        grads.register::<Flex>(node.id, tensor);
+                    }
                 }
             }
         }
 
-        let guards = [input.node(), gamma.node(), beta.node()];
-        let (x, gamma, beta) =
-            (input.into_primitive(), gamma.into_primitive(), beta.into_primitive());
-        let output = Flex::layer_norm_relu(x.clone(), gamma.clone(), beta.clone());
+        let guards = [input.node(), bias.node(), gamma.node(), beta.node()];
+        let state = [input, bias, gamma, beta].map(|t| t.into_primitive());
+        let [x, bias, gamma, beta] = state.clone();
+        let output = Flex::layer_norm_relu(x, bias, gamma, beta);
         match NormRelu.prepare::<C>(guards).compute_bound().stateful() {
-            OpsKind::Tracked(prep) => prep.finish((x, gamma, beta), output),
+            OpsKind::Tracked(prep) => prep.finish(state, output),
             OpsKind::UnTracked(prep) => prep.finish(output),
         }
     }
+}
+
+/// The per-channel parameters of one fused layer: the linear layer's bias and the norm's
+/// `γ` and `β`, each as long as a row.
+#[derive(Debug, Clone, Copy)]
+pub struct Channels<'a> {
+    /// Added to every row first.
+    pub bias: &'a [f32],
+    /// Scale after normalising.
+    pub gamma: &'a [f32],
+    /// Shift after scaling.
+    pub beta: &'a [f32],
 }
 
 /// A flex tensor made contiguous, read as `f32`s.
@@ -190,8 +225,9 @@ fn statistics(row: &[f32]) -> (f32, f32) {
     (mean, 1.0 / (var + EPSILON).sqrt())
 }
 
-/// The forward pass on rows of `gamma.len()` values.
-pub fn forward(x: &[f32], gamma: &[f32], beta: &[f32]) -> Vec<f32> {
+/// The forward pass on rows of `channels.gamma.len()` values.
+pub fn forward(x: &[f32], channels: &Channels) -> Vec<f32> {
+    let Channels { bias, gamma, beta } = *channels;
     let c = gamma.len();
     let mut out = vec![0.0f32; x.len()];
     if c == 0 {
@@ -202,9 +238,13 @@ pub fn forward(x: &[f32], gamma: &[f32], beta: &[f32]) -> Vec<f32> {
         |(out, x)| {
             arch.dispatch(|| {
                 for (o, row) in out.chunks_exact_mut(c).zip(x.chunks_exact(c)) {
-                    let (mean, r) = statistics(row);
-                    for (((o, &v), &g), &b) in o.iter_mut().zip(row).zip(gamma).zip(beta) {
-                        *o = ((v - mean) * r * g + b).max(0.0);
+                    // The row plus the bias, written to the output and normalised in place.
+                    for ((o, &v), &b) in o.iter_mut().zip(row).zip(bias) {
+                        *o = v + b;
+                    }
+                    let (mean, r) = statistics(o);
+                    for ((o, &g), &b) in o.iter_mut().zip(gamma).zip(beta) {
+                        *o = ((*o - mean) * r * g + b).max(0.0);
                     }
                 }
             })
@@ -214,23 +254,27 @@ pub fn forward(x: &[f32], gamma: &[f32], beta: &[f32]) -> Vec<f32> {
 }
 
 /// The backward pass: overwrites the output's gradient `grad` with the input's, and returns
-/// the gradients of `γ` and `β`.
-pub fn backward(x: &[f32], gamma: &[f32], beta: &[f32], grad: &mut [f32]) -> (Vec<f32>, Vec<f32>) {
+/// the gradients of the bias, `γ` and `β`.
+pub fn backward(x: &[f32], channels: &Channels, grad: &mut [f32]) -> [Vec<f32>; 3] {
+    let Channels { bias, gamma, beta } = *channels;
     let c = gamma.len();
     if c == 0 {
-        return (Vec::new(), Vec::new());
+        return [Vec::new(), Vec::new(), Vec::new()];
     }
     let block = ROWS_PER_TASK * c;
     let arch = pulp::Arch::new();
-    let partial: Vec<(Vec<f32>, Vec<f32>)> = grad
+    let partial: Vec<[Vec<f32>; 3]> = grad
         .par_chunks_mut(block)
         .zip(x.par_chunks(block))
         .map(|(grad, x)| {
             arch.dispatch(|| {
-                let (mut dgamma, mut dbeta) = (vec![0.0f32; c], vec![0.0f32; c]);
-                let (mut xhat, mut ghat) = (vec![0.0f32; c], vec![0.0f32; c]);
+                let [mut dbias, mut dgamma, mut dbeta] = [0; 3].map(|_| vec![0.0f32; c]);
+                let [mut y, mut xhat, mut ghat] = [0; 3].map(|_| vec![0.0f32; c]);
                 for (g, row) in grad.chunks_exact_mut(c).zip(x.chunks_exact(c)) {
-                    let (mean, r) = statistics(row);
+                    for ((y, &v), &b) in y.iter_mut().zip(row).zip(bias) {
+                        *y = v + b;
+                    }
+                    let (mean, r) = statistics(&y);
                     // x̂, the output's gradient where the output is positive (ReLU), and the
                     // γ, β gradients of this row.
                     for (((((((xh, gh), dg), db), &v), &g), &ga), &be) in xhat
@@ -238,7 +282,7 @@ pub fn backward(x: &[f32], gamma: &[f32], beta: &[f32], grad: &mut [f32]) -> (Ve
                         .zip(ghat.iter_mut())
                         .zip(dgamma.iter_mut())
                         .zip(dbeta.iter_mut())
-                        .zip(row)
+                        .zip(&y)
                         .zip(g.iter())
                         .zip(gamma)
                         .zip(beta)
@@ -252,74 +296,90 @@ pub fn backward(x: &[f32], gamma: &[f32], beta: &[f32], grad: &mut [f32]) -> (Ve
                     }
                     let m1 = lane_sum(&ghat, &ghat, |g, _| g) / c as f32;
                     let m2 = lane_sum(&ghat, &xhat, |g, h| g * h) / c as f32;
-                    for ((dx, &gh), &xh) in g.iter_mut().zip(&ghat).zip(&xhat) {
+                    for (((dx, d), &gh), &xh) in
+                        g.iter_mut().zip(dbias.iter_mut()).zip(&ghat).zip(&xhat)
+                    {
                         *dx = r * (gh - m1 - xh * m2);
+                        *d += *dx;
                     }
                 }
-                (dgamma, dbeta)
+                [dbias, dgamma, dbeta]
             })
         })
         .collect();
-    let (mut dgamma, mut dbeta) = (vec![0.0f32; c], vec![0.0f32; c]);
-    for (pg, pb) in &partial {
-        dgamma.iter_mut().zip(pg).for_each(|(a, b)| *a += b);
-        dbeta.iter_mut().zip(pb).for_each(|(a, b)| *a += b);
+    let mut sums = [0; 3].map(|_| vec![0.0f32; c]);
+    for block in &partial {
+        for (sum, part) in sums.iter_mut().zip(block) {
+            sum.iter_mut().zip(part).for_each(|(a, b)| *a += b);
+        }
     }
-    (dgamma, dbeta)
+    sums
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use burn::module::Param;
-    use burn::nn::LayerNormConfig;
+    use burn::nn::{LayerNormConfig, LinearConfig};
     use burn::tensor::Distribution;
 
-    /// Values and the gradients of input, γ and β, through `f`, for the loss
+    /// A layer of 10 inputs and 24 outputs with random bias, γ and β.
+    fn layer(device: &Device) -> (Linear, LayerNorm) {
+        let mut linear = LinearConfig::new(10, 24).init(device);
+        linear.bias =
+            Some(Param::from_tensor(Tensor::random([24], Distribution::Normal(0.0, 0.5), device)));
+        let mut norm = LayerNormConfig::new(24).init(device);
+        // γ and β away from 1 and 0, so that every term of the gradient matters.
+        norm.gamma =
+            Param::from_tensor(Tensor::random([24], Distribution::Uniform(0.5, 1.5), device));
+        norm.beta =
+            Some(Param::from_tensor(Tensor::random([24], Distribution::Normal(0.0, 0.5), device)));
+        (linear, norm)
+    }
+
+    fn values<const D: usize>(t: Tensor<D>) -> Vec<f32> {
+        t.to_data().try_to_vec::<f32>().expect("f32")
+    }
+
+    /// Values and the gradients of input, weight, bias, γ and β, through `f`, for the loss
     /// `sum(out * weights)`.
     fn run(
-        norm: &LayerNorm,
+        (linear, norm): &(Linear, LayerNorm),
         x: &Tensor<3>,
         weights: &Tensor<3>,
-        f: fn(&LayerNorm, Tensor<3>) -> Tensor<3>,
-    ) -> [Vec<f32>; 4] {
+        f: fn(&Linear, &LayerNorm, Tensor<3>) -> Tensor<3>,
+    ) -> Vec<Vec<f32>> {
         let x = x.clone().require_grad();
-        let out = f(norm, x.clone());
+        let out = f(linear, norm, x.clone());
         let grads = (out.clone() * weights.clone()).sum().backward();
-        let read = |t: Option<Tensor<1>>| {
-            t.expect("a gradient").to_data().try_to_vec::<f32>().expect("f32")
-        };
-        [
-            out.to_data().try_to_vec::<f32>().expect("f32"),
-            x.grad(&grads).expect("input gradient").to_data().try_to_vec::<f32>().expect("f32"),
-            read(norm.gamma.grad(&grads)),
-            read(norm.beta.as_ref().and_then(|b| b.grad(&grads))),
+        let bias = linear.bias.as_ref().expect("a bias");
+        let beta = norm.beta.as_ref().expect("a beta");
+        vec![
+            values(out),
+            values(x.grad(&grads).expect("input gradient")),
+            values(linear.weight.grad(&grads).expect("weight gradient")),
+            values(bias.grad(&grads).expect("bias gradient")),
+            values(norm.gamma.grad(&grads).expect("gamma gradient")),
+            values(beta.grad(&grads).expect("beta gradient")),
         ]
     }
 
-    fn reference(norm: &LayerNorm, x: Tensor<3>) -> Tensor<3> {
-        activation::relu(norm.forward(x))
+    fn reference(layer: &Linear, norm: &LayerNorm, x: Tensor<3>) -> Tensor<3> {
+        activation::relu(norm.forward(layer.forward(x)))
     }
 
     #[test]
-    fn matches_layer_norm_then_relu_in_values_and_gradients() {
+    fn matches_linear_layer_norm_relu_in_values_and_gradients() {
         let device = Device::flex().autodiff();
         // 300 rows: more than one block, and a last block that is not full.
-        let x = Tensor::<3>::random([3, 100, 24], Distribution::Normal(0.5, 2.0), &device);
+        let x = Tensor::<3>::random([3, 100, 10], Distribution::Normal(0.5, 2.0), &device);
         let weights = Tensor::<3>::random([3, 100, 24], Distribution::Normal(0.0, 1.0), &device);
-        let mut norm = LayerNormConfig::new(24).init(&device);
-        // γ and β away from 1 and 0, so that every term of the gradient matters.
-        norm.gamma =
-            Param::from_tensor(Tensor::random([24], Distribution::Uniform(0.5, 1.5), &device));
-        norm.beta =
-            Some(Param::from_tensor(Tensor::random([24], Distribution::Normal(0.0, 0.5), &device)));
-        assert!(is_fused(&norm, &x));
-        let fused = run(&norm, &x, &weights, layer_norm_relu);
-        let expected = run(&norm, &x, &weights, reference);
-        for (name, (a, b)) in ["output", "input grad", "gamma grad", "beta grad"]
-            .iter()
-            .zip(fused.iter().zip(&expected))
-        {
+        let layer = layer(&device);
+        assert!(is_fused(&layer.0, &layer.1, &x));
+        let fused = run(&layer, &x, &weights, linear_norm_relu);
+        let expected = run(&layer, &x, &weights, reference);
+        let names = ["output", "input", "weight", "bias", "gamma", "beta"];
+        for (name, (a, b)) in names.iter().zip(fused.iter().zip(&expected)) {
             assert_eq!(a.len(), b.len(), "{name}");
             let scale = b.iter().fold(1.0f32, |m, v| m.max(v.abs()));
             let worst = a.iter().zip(b).map(|(a, b)| (a - b).abs()).fold(0.0, f32::max);
@@ -333,14 +393,11 @@ mod tests {
     #[test]
     fn inference_keeps_burns_operations_bit_for_bit() {
         let device = Device::flex();
-        let x = Tensor::<2>::random([70, 16], Distribution::Normal(0.0, 1.0), &device);
-        let norm = LayerNormConfig::new(16).init(&device);
-        assert!(!is_fused(&norm, &x));
-        let a: Vec<f32> =
-            layer_norm_relu(&norm, x.clone()).to_data().try_to_vec::<f32>().expect("f32");
-        let b: Vec<f32> =
-            activation::relu(norm.forward(x)).to_data().try_to_vec::<f32>().expect("f32");
-        assert_eq!(a, b);
+        let x = Tensor::<3>::random([2, 35, 10], Distribution::Normal(0.0, 1.0), &device);
+        let (linear, norm) = layer(&device);
+        assert!(!is_fused(&linear, &norm, &x));
+        let a = values(linear_norm_relu(&linear, &norm, x.clone()));
+        assert_eq!(a, values(reference(&linear, &norm, x)));
     }
 
     #[test]
@@ -353,12 +410,13 @@ mod tests {
         let x: Vec<f32> =
             (0..(5 * ROWS_PER_TASK + 3) * 8).map(|i| ((i * 37 % 101) as f32).sin()).collect();
         let grad: Vec<f32> = x.iter().map(|v| (v * 3.0).cos()).collect();
-        let (gamma, beta) = (vec![0.9f32; 8], vec![0.1f32; 8]);
+        let (bias, gamma, beta) = (vec![0.2f32; 8], vec![0.9f32; 8], vec![0.1f32; 8]);
+        let channels = Channels { bias: &bias, gamma: &gamma, beta: &beta };
         let one = rayon::ThreadPoolBuilder::new().num_threads(1).build().expect("pool");
         let (mut da, mut db) = (grad.clone(), grad);
-        let a = one.install(|| backward(&x, &gamma, &beta, &mut da));
+        let a = one.install(|| backward(&x, &channels, &mut da));
         let three = rayon::ThreadPoolBuilder::new().num_threads(3).build().expect("pool");
-        let b = three.install(|| backward(&x, &gamma, &beta, &mut db));
+        let b = three.install(|| backward(&x, &channels, &mut db));
         assert_eq!((a, da), (b, db));
     }
 }

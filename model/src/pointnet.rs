@@ -14,7 +14,7 @@ use burn::nn::{Initializer, LayerNorm, LayerNormConfig, Linear, LinearConfig};
 use burn::prelude::*;
 use burn::tensor::TensorData;
 
-use crate::norm::layer_norm_relu;
+use crate::norm::linear_norm_relu;
 use crate::sampling::{ball_query, farthest_point_sampling, three_nn, SamplingError};
 
 /// A `Linear` layer that feeds a ReLU, initialised after He et al. (variance `2 / fan_in`)
@@ -87,7 +87,7 @@ impl SharedMlp {
         self.layers
             .iter()
             .zip(&self.norms)
-            .fold(x, |x, (layer, norm)| layer_norm_relu(norm, linear(layer, x)))
+            .fold(x, |x, (layer, norm)| linear_norm_relu(layer, norm, x))
     }
 }
 
