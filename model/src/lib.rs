@@ -8,6 +8,8 @@
 //! that group features by gather, so gradients flow to every point that was picked.
 //! [`rotation`] projects matrices onto rotations differentiably, for the hypothesis
 //! generator, and [`losses`] holds the paper's training losses as pure tensor functions.
+//! [`norm`] runs a shared-MLP layer's bias, layer norm and ReLU as one operation with its
+//! own backward pass when training on the CPU.
 //!
 //! ```
 //! use burn::prelude::*;
