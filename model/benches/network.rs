@@ -69,7 +69,7 @@ fn bench(c: &mut Criterion) {
                 format!("{name}/train_step_stage{stage}_batch{batch_size}"),
                 |b| {
                     b.iter(|| {
-                        let (_, _, grads) =
+                        let (_, _, grads, _) =
                             batch_gradients(&net, &config, &device, batch, &rotations, stage)
                                 .expect("a loss");
                         net = optimizer.step(1e-4, net.clone(), grads);

@@ -28,6 +28,36 @@ pub struct StepRow {
     pub terms: LossTerms,
     /// Wall-clock seconds of the step.
     pub seconds: f64,
+    /// Where the step's time went.
+    pub phases: StepPhases,
+}
+
+/// Wall-clock seconds of a step's phases. With several replicas the batch, forward and
+/// backward phases run on every shard at once, and each is the slowest shard's; what the
+/// step's `seconds` holds besides them is waiting for training pairs and summing the shards'
+/// gradients.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct StepPhases {
+    /// Building the batch's tensors from the pairs.
+    pub batch: f64,
+    /// The forward pass and the loss.
+    pub forward: f64,
+    /// The backward pass.
+    pub backward: f64,
+    /// The optimiser's update.
+    pub optimizer: f64,
+}
+
+impl StepPhases {
+    /// The slowest of `self` and `other` in every phase.
+    pub fn max(self, other: Self) -> Self {
+        Self {
+            batch: self.batch.max(other.batch),
+            forward: self.forward.max(other.forward),
+            backward: self.backward.max(other.backward),
+            optimizer: self.optimizer.max(other.optimizer),
+        }
+    }
 }
 
 /// One validation.
@@ -64,6 +94,7 @@ fn io(path: &Path) -> impl FnOnce(std::io::Error) -> LogError + '_ {
 }
 
 const STEP_HEADER: &str = "step,pairs,stage,learning_rate,loss";
+const PHASES_HEADER: &str = "batch_seconds,forward_seconds,backward_seconds,optimizer_seconds";
 const VALIDATION_HEADER: &str = "step,pairs,stage,epe,rand_index,iou,support_iou";
 
 /// The open log of a run.
@@ -120,7 +151,7 @@ impl Log {
     /// Opens the log in `dir`, keeping rows up to step `last`.
     pub fn open(dir: &Path, last: u64) -> Result<Self, LogError> {
         std::fs::create_dir_all(dir).map_err(io(dir))?;
-        let header = format!("{STEP_HEADER},{},seconds", TERM_NAMES.join(","));
+        let header = format!("{STEP_HEADER},{},seconds,{PHASES_HEADER}", TERM_NAMES.join(","));
         let (steps, rows) = reopen(&dir.join("log.csv"), &header, last)?;
         let (validations, vrows) = reopen(&dir.join("validation.csv"), VALIDATION_HEADER, last)?;
         let mut curves = Curves::default();
@@ -137,16 +168,21 @@ impl Log {
     pub fn step(&mut self, row: &StepRow) -> Result<(), LogError> {
         let terms: Vec<String> = row.terms.values().iter().map(|v| optional(*v)).collect();
         let path = self.dir.join("log.csv");
+        let p = row.phases;
         writeln!(
             self.steps,
-            "{},{},{},{},{},{},{:.3}",
+            "{},{},{},{},{},{},{:.3},{:.3},{:.3},{:.3},{:.3}",
             row.step,
             row.pairs,
             row.stage,
             row.learning_rate,
             row.loss,
             terms.join(","),
-            row.seconds
+            row.seconds,
+            p.batch,
+            p.forward,
+            p.backward,
+            p.optimizer
         )
         .map_err(io(&path))?;
         self.steps.flush().map_err(io(&path))?;
@@ -202,5 +238,34 @@ mod tests {
             text,
             "step,pairs,stage,epe,rand_index,iou,support_iou\n10,80,1,0.5,0.6,0.2,\n30,240,2,0.25,0.75,0.5,0.625\n"
         );
+    }
+
+    #[test]
+    fn step_rows_carry_the_phases_and_older_rows_get_empty_ones() {
+        let dir = tempfile::tempdir().expect("temporary folder");
+        let path = dir.path().join("log.csv");
+        let old = "step,pairs,stage,learning_rate,loss,correspondence,flow,motion,support,\
+                   segment,continuation,seconds\n1,8,1,0.001,2.5,2,0.5,,,,,0.750\n";
+        std::fs::write(&path, old).expect("old log");
+        let mut log = Log::open(dir.path(), 1).expect("reopens");
+        let phases = StepPhases { batch: 0.01, forward: 0.2, backward: 0.4, optimizer: 0.05 };
+        let row = StepRow {
+            step: 2,
+            pairs: 16,
+            stage: 1,
+            learning_rate: 0.001,
+            loss: 2.0,
+            terms: LossTerms::default(),
+            seconds: 0.7,
+            phases,
+        };
+        log.step(&row).expect("row");
+        let text = std::fs::read_to_string(&path).expect("log");
+        let lines: Vec<&str> = text.lines().collect();
+        assert!(lines[0].ends_with(
+            ",seconds,batch_seconds,forward_seconds,backward_seconds,optimizer_seconds"
+        ));
+        assert_eq!(lines[1], "1,8,1,0.001,2.5,2,0.5,,,,,0.750,,,,");
+        assert_eq!(lines[2], "2,16,1,0.001,2,,,,,,,0.700,0.010,0.200,0.400,0.050");
     }
 }

@@ -21,7 +21,7 @@ use rayon::prelude::*;
 use crate::batch::TrainingBatch;
 use crate::checkpoint::{save_weights, Best, CheckpointDir, CheckpointError, TrainState};
 use crate::config::TrainConfig;
-use crate::log::{Log, LogError, StepRow, ValidationRow};
+use crate::log::{Log, LogError, StepPhases, StepRow, ValidationRow};
 use crate::network::PartNet;
 use crate::objective::{stage_loss, LossTerms};
 use crate::sampling::SamplingError;
@@ -150,7 +150,8 @@ fn augmentation(config: &TrainConfig, step: u64, index: usize) -> Matrix3 {
     *Rotation3::from_scaled_axis(axis * angle).matrix()
 }
 
-/// The loss of a batch, its terms and the gradients: the whole batch at once, or split
+/// The loss of a batch, its terms, the gradients and the time of each phase (the optimiser's
+/// left at zero, for the caller): the whole batch at once, or split
 /// into `replicas` equal shards run on their own threads, each on a replica of the
 /// network whose parameters are fresh autodiff leaves (so the shards' graphs stay
 /// apart), each shard's loss weighted by its share of the batch, and the gradients summed
@@ -162,17 +163,26 @@ pub fn batch_gradients(
     pairs: &[Pair],
     rotations: &[Matrix3],
     stage: u8,
-) -> Result<(f32, LossTerms, GradientsParams), SamplingError> {
+) -> Result<(f32, LossTerms, GradientsParams, StepPhases), SamplingError> {
     let shards = config.replicas.clamp(1, pairs.len().max(1));
-    let run = |net: &PartNet, pairs: &[Pair], rotations: &[Matrix3]| {
+    // One shard: its batch, forward pass and loss, and backward pass (the loss scaled by
+    // `share`), each timed.
+    let run = |net: &PartNet, pairs: &[Pair], rotations: &[Matrix3], share: f32| {
+        let mut phases = StepPhases::default();
+        let clock = Instant::now();
         let batch = TrainingBatch::new(pairs, rotations, &config.network, device)?;
+        phases.batch = clock.elapsed().as_secs_f64();
+        let clock = Instant::now();
         let (loss, terms) = stage_loss(net, &batch, stage, config.end_to_end)?;
         let value = loss.clone().into_scalar::<f32>();
-        Ok::<_, SamplingError>((loss, value, terms))
+        phases.forward = clock.elapsed().as_secs_f64();
+        let clock = Instant::now();
+        let grads = GradientsParams::from_grads((loss * share).backward(), net);
+        phases.backward = clock.elapsed().as_secs_f64();
+        Ok::<_, SamplingError>((value, terms, grads, phases))
     };
     if shards == 1 {
-        let (loss, value, terms) = run(net, pairs, rotations)?;
-        return Ok((value, terms, GradientsParams::from_grads(loss.backward(), net)));
+        return run(net, pairs, rotations, 1.0);
     }
     let size = pairs.len().div_ceil(shards);
     let jobs: Vec<(PartNet, &[Pair], &[Matrix3])> = pairs
@@ -182,26 +192,26 @@ pub fn batch_gradients(
         .collect();
     // The shards run on long-lived threads: a thread that exits makes the allocator hand its
     // memory back to the kernel, and the next step would page-fault it in again.
-    let results: Vec<Result<(f32, LossTerms, GradientsParams), SamplingError>> = replica_pool()
-        .install(|| {
-            jobs.into_par_iter()
-                .map(|(replica, chunk, rots)| {
-                    let share = chunk.len() as f32 / pairs.len() as f32;
-                    let (loss, value, terms) = run(&replica, chunk, rots)?;
-                    let grads = GradientsParams::from_grads((loss * share).backward(), &replica);
-                    Ok((value * share, terms.scaled(share), grads))
-                })
-                .collect()
-        });
+    type Shard = Result<(f32, LossTerms, GradientsParams, StepPhases), SamplingError>;
+    let results: Vec<Shard> = replica_pool().install(|| {
+        jobs.into_par_iter()
+            .map(|(replica, chunk, rots)| {
+                let share = chunk.len() as f32 / pairs.len() as f32;
+                let (value, terms, grads, phases) = run(&replica, chunk, rots, share)?;
+                Ok((value * share, terms.scaled(share), grads, phases))
+            })
+            .collect()
+    });
     let mut accumulator = GradientsAccumulator::<PartNet>::new();
-    let (mut value, mut terms) = (0.0, LossTerms::default());
+    let (mut value, mut terms, mut phases) = (0.0, LossTerms::default(), StepPhases::default());
     for result in results {
-        let (v, t, grads) = result?;
+        let (v, t, grads, p) = result?;
         value += v;
         terms = terms.plus(&t);
+        phases = phases.max(p);
         accumulator.accumulate(net, grads);
     }
-    Ok((value, terms, accumulator.grads()))
+    Ok((value, terms, accumulator.grads(), phases))
 }
 
 /// The threads that run a step's shards: one per core (at least two), kept for the process's
@@ -368,14 +378,16 @@ impl Trainer {
         let rotations: Vec<Matrix3> =
             (0..pairs.len()).map(|i| augmentation(&self.config, step, i)).collect();
         let stage = self.config.stage_at(self.state.pairs);
-        let (value, terms, grads) =
+        let (value, terms, grads, mut phases) =
             batch_gradients(&self.net, &self.config, &self.device, &pairs, &rotations, stage)
                 .map_err(|source| TrainError::Batch { step, source })?;
         if !value.is_finite() {
             return Err(TrainError::Diverged { step, stage, value });
         }
         let lr = self.config.learning_rate_at(self.state.pairs);
+        let clock = Instant::now();
         self.net = self.optimizer.step(lr, self.net.clone(), grads);
+        phases.optimizer = clock.elapsed().as_secs_f64();
         self.state.step += 1;
         self.state.pairs += pairs.len() as u64;
         let seconds = started.elapsed().as_secs_f64();
@@ -388,6 +400,7 @@ impl Trainer {
             loss: value,
             terms,
             seconds,
+            phases,
         };
         self.log.step(&row)?;
         Ok(row)

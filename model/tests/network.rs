@@ -183,13 +183,15 @@ fn two_replicas_sum_the_gradients_of_their_halves_of_the_batch() {
     let device = Device::flex().autodiff();
     let net = PartNet::seeded(&one.network, &device, 5);
     for stage in [1u8, 3] {
-        let (value, _, grads) =
+        let (value, _, grads, phases) =
             batch_gradients(&net, &two, &device, &pairs, &rotations, stage).expect("a step");
+        assert!(phases.batch > 0.0 && phases.forward > 0.0 && phases.backward > 0.0);
+        assert_eq!(phases.optimizer, 0.0, "the optimiser is the caller's");
         let together = gradient_values(&net, &grads);
         let halves: Vec<_> = [0..2, 2..4]
             .into_iter()
             .map(|range| {
-                let (v, _, g) = batch_gradients(
+                let (v, _, g, _) = batch_gradients(
                     &net,
                     &one,
                     &device,
