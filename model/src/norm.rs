@@ -6,7 +6,7 @@
 //! operations it is made of (mean, centre, square, mean, add, square root, divide, scale,
 //! shift) and ReLU as one more, so a layer on a pair tensor of 16-67 MB made about eleven
 //! passes over it forward and twice that backward: a `perf` profile of a stage-3 step put
-//! 35% of it in those operations. Here the matrix product runs alone (one product on the
+//! about a third of it in operations of those kinds. Here the matrix product runs alone (one product on the
 //! flattened rows), and the rest is one sweep over the rows forward (each row plus the
 //! bias, its mean and variance, then the normalised, scaled, shifted and clipped values)
 //! and one backward: it keeps only the product's output and the three parameter vectors,
