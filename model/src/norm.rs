@@ -140,12 +140,10 @@ impl<C: CheckpointStrategy> NormReluBackend for Autodiff<Flex, C> {
                 let channels =
                     Channels { bias: bias.values(), gamma: gamma.values(), beta: beta.values() };
                 // The input's gradient overwrites the output's (copied first if shared).
-                let mut dx = grad.to_contiguous();
-                let (start, end) = dx.layout().contiguous_offsets().unwrap_or((0, 0));
-                let sums =
-                    backward(x.values(), &channels, &mut dx.storage_mut::<f32>()[start..end]);
+                let mut dx = F32Rows::new(grad);
+                let sums = backward(x.values(), &channels, dx.values_mut());
                 if let Some(node) = node_x {
-                    grads.register::<Flex>(node.id, dx);
+                    grads.register::<Flex>(node.id, dx.tensor);
                 }
                 for (node, values) in [node_bias, node_gamma, node_beta].into_iter().zip(sums) {
                     if let Some(node) = node {
@@ -194,6 +192,11 @@ impl F32Rows {
 
     fn values(&self) -> &[f32] {
         &self.tensor.storage::<f32>()[self.range.clone()]
+    }
+
+    /// The values to write in place (copied first if the storage is shared).
+    fn values_mut(&mut self) -> &mut [f32] {
+        &mut self.tensor.storage_mut::<f32>()[self.range.clone()]
     }
 }
 
