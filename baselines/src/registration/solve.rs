@@ -1,6 +1,7 @@
 //! Small dense least-squares machinery for the deformation solvers: normal equations
 //! accumulated from sparse residual rows, and the Procrustes rotation of a covariance.
 
+use faer::linalg::solvers::Solve;
 use nalgebra::{DMatrix, DVector, Matrix3};
 
 /// `J^T W J` and `J^T W r` of a least-squares problem, built row by row.
@@ -31,10 +32,20 @@ impl NormalEquations {
 
     /// The Gauss-Newton step `-(J^T W J + damping I)^-1 J^T W r`, or `None` when the system
     /// is singular or the step is not finite.
+    ///
+    /// The Cholesky factorisation is faer's (blocked and vectorised; with the 576 unknowns
+    /// of the ED baseline's 48 nodes it is several times faster than nalgebra's), run
+    /// sequentially (faer is built without rayon), so the step does not depend on the
+    /// thread count. Only the lower triangle of `J^T W J` is read.
     pub fn step(&self, damping: f64) -> Option<DVector<f64>> {
         let n = self.jtr.len();
-        let system = &self.jtj + DMatrix::identity(n, n) * damping;
-        let step = -system.cholesky()?.solve(&self.jtr);
+        let system = faer::Mat::from_fn(n, n, |i, j| {
+            self.jtj[(i, j)] + if i == j { damping } else { 0.0 }
+        });
+        let llt = system.llt(faer::Side::Lower).ok()?;
+        let rhs = faer::Col::from_fn(n, |i| self.jtr[i]);
+        let solution = llt.solve(&rhs);
+        let step = DVector::from_fn(n, |i, _| -solution[i]);
         step.iter().all(|v| v.is_finite()).then_some(step)
     }
 }
@@ -69,6 +80,18 @@ mod tests {
         }
         let step = eq.step(0.0).expect("well posed");
         assert!((step[0] - 2.0).abs() < 1e-9 && (step[1] - 1.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn a_singular_system_has_no_step_until_damped() {
+        // One residual in two unknowns: J^T J = [[1, 1], [1, 1]] has rank 1.
+        let mut eq = NormalEquations::new(2);
+        eq.add(&[(0, 1.0), (1, 1.0)], 1.0, 1.0);
+        assert_eq!(eq.step(0.0), None);
+        // Damped, the step is the minimum-norm direction: -(J^T J + d I)^-1 J^T r.
+        let step = eq.step(1.0).expect("damped system is positive definite");
+        let expected = -1.0 / 3.0;
+        assert!((step[0] - expected).abs() < 1e-12 && (step[1] - expected).abs() < 1e-12);
     }
 
     #[test]
