@@ -218,7 +218,7 @@ pub fn remember_datasets(reports: &Path, specs: &[DatasetSpec]) -> Result<(), Ev
         return Ok(());
     }
     let json = serde_json::to_string_pretty(&map).expect("a name map serialises");
-    crate::files::replace_file(&path, |out| {
+    pairs::atomic::replace_file(&path, |out| {
         std::io::Write::write_all(out, json.as_bytes())
             .map_err(|source| EvalError::Io { path: path.clone(), source })
     })

@@ -105,3 +105,9 @@ pub enum EvalError {
         message: String,
     },
 }
+
+impl From<pairs::atomic::FileError> for EvalError {
+    fn from(e: pairs::atomic::FileError) -> Self {
+        Self::Io { path: e.path, source: e.source }
+    }
+}

@@ -24,7 +24,7 @@ use sha2::{Digest, Sha256};
 
 use crate::datasets::LoadedDataset;
 use crate::error::EvalError;
-use crate::files::replace_file;
+use pairs::atomic::replace_file;
 
 /// The file under the reports folder that remembers the external rows scored into it.
 pub const EXTERNAL_ROWS_FILE: &str = "external_rows.json";

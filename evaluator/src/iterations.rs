@@ -16,9 +16,9 @@ use plotters::prelude::*;
 use rayon::prelude::*;
 
 use crate::error::EvalError;
-use crate::files::replace_file;
 use crate::joints::{median, JointScores};
 use crate::plots::PALETTE;
+use pairs::atomic::replace_file;
 
 /// The scores of one iteration on one dataset.
 #[derive(Debug, Clone, PartialEq)]
@@ -149,7 +149,7 @@ pub fn write_iterations(
         let path = path.to_path_buf();
         move |source| EvalError::Io { path, source }
     };
-    replace_file(&csv, |w| {
+    replace_file(&csv, |w| -> Result<(), EvalError> {
         writeln!(w, "dataset,iteration,pairs,running,epe,rand_index,iou").map_err(io(&csv))?;
         for r in rows {
             writeln!(
@@ -162,7 +162,7 @@ pub fn write_iterations(
         Ok(())
     })?;
     let joints_csv = dir.join("iterations_joints.csv");
-    replace_file(&joints_csv, |w| {
+    replace_file(&joints_csv, |w| -> Result<(), EvalError> {
         writeln!(w, "dataset,method,joints,type_accuracy,estimated,median_axis_error_deg,median_pivot_distance")
             .map_err(io(&joints_csv))?;
         for r in joint_rows {

@@ -13,10 +13,10 @@ use pairs::metrics::{PCC_STEP, PCC_THRESHOLDS};
 use polars::prelude::*;
 
 use crate::error::EvalError;
-use crate::files::replace_file;
 use crate::record::{pcc_column, RunTable};
 use crate::registry::{Board, Entry};
 use crate::run::RunResult;
+use pairs::atomic::replace_file;
 
 /// One row's run on one dataset, as the leaderboards read it.
 pub struct Scored<'a> {

@@ -24,7 +24,6 @@ pub mod commands;
 pub mod datasets;
 pub mod error;
 pub mod external;
-pub mod files;
 pub mod gallery;
 pub mod iterations;
 pub mod joints;

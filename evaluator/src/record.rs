@@ -6,8 +6,8 @@ use std::path::Path;
 use pairs::metrics::{PCC_STEP, PCC_THRESHOLDS};
 
 use crate::error::EvalError;
-use crate::files::replace_file;
 use crate::score::PairScore;
+use pairs::atomic::replace_file;
 
 /// One pair's outcome for one method.
 #[derive(Debug, Clone, PartialEq)]

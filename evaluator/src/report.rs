@@ -11,12 +11,12 @@ use polars::prelude::{AnyValue, DataFrame};
 
 use crate::error::EvalError;
 use crate::external::EXTERNAL;
-use crate::files::replace_file;
 use crate::gallery::GalleryPicture;
 use crate::leaderboard::Leaderboards;
 use crate::paper::{figures_for, Metric, PaperFigure, FIGURES};
 use crate::plots::colour_hex;
 use crate::tuning::Sweep;
+use pairs::atomic::replace_file;
 
 fn cell(value: AnyValue) -> String {
     match value {

@@ -18,11 +18,11 @@ use serde::{Deserialize, Serialize};
 
 use crate::datasets::LoadedDataset;
 use crate::error::EvalError;
-use crate::files::replace_file;
 use crate::memory;
 use crate::record::{joint_types, read_records, write_records, PairRecord, RunTable};
 use crate::registry::{method_flow_name, Entry, FlowSource, Runner};
 use crate::score::score_pair;
+use pairs::atomic::replace_file;
 
 /// Version of the runs files; bump it when scoring changes so cached runs are recomputed.
 pub const RUNS_VERSION: u32 = 3;

@@ -25,10 +25,10 @@ use serde::{Deserialize, Serialize};
 
 use crate::datasets::LoadedDataset;
 use crate::error::EvalError;
-use crate::files::replace_file;
 use crate::registry::Runner;
 use crate::run::{predict_pair, FlowCache};
 use crate::score::score_pair;
+use pairs::atomic::replace_file;
 
 /// One swept parameter: its name, its starting values (ascending) and how it widens.
 #[derive(Debug, Clone, PartialEq)]

@@ -9,7 +9,7 @@ use burn::prelude::*;
 use burn::store::ModuleRecord;
 use serde::{Deserialize, Serialize};
 
-use crate::files::{at, FileError};
+use pairs::atomic::{at, replace_with, FileError};
 
 use crate::config::{NetworkConfig, TrainConfig};
 use crate::network::PartNet;
@@ -99,18 +99,9 @@ fn record(path: &Path) -> impl FnOnce(burn::store::RecordError) -> CheckpointErr
     move |e| CheckpointError::Record { path: path.to_path_buf(), message: e.to_string() }
 }
 
-/// A temporary sibling of `path`, renamed onto it once written.
-fn temporary(path: &Path) -> PathBuf {
-    let mut name = path.file_name().unwrap_or_default().to_os_string();
-    name.push(".partial");
-    path.with_file_name(name)
-}
-
-/// Writes the network's weights to `path` (burn's record format).
+/// Writes the network's weights to `path` (burn's record format), whole or not at all.
 pub fn save_weights(net: &PartNet, path: &Path) -> Result<(), CheckpointError> {
-    let tmp = temporary(path);
-    net.clone().into_record().save(&tmp).map_err(record(&tmp))?;
-    std::fs::rename(&tmp, path).map_err(io(path))
+    replace_with(path, |tmp| net.clone().into_record().save(tmp).map_err(record(tmp)))
 }
 
 /// A network with `config`'s sizes and the weights of `path`, on `device`.
@@ -194,15 +185,9 @@ impl CheckpointDir {
     ) -> Result<(), CheckpointError> {
         std::fs::create_dir_all(&self.root).map_err(io(&self.root))?;
         save_weights(net, &self.model())?;
-        let path = self.optimizer();
-        let tmp = temporary(&path);
-        optimizer.save(&tmp).map_err(record(&tmp))?;
-        std::fs::rename(&tmp, &path).map_err(io(&path))?;
-        let path = self.state();
-        let tmp = temporary(&path);
+        replace_with(&self.optimizer(), |tmp| optimizer.save(tmp).map_err(record(tmp)))?;
         let text = serde_json::to_string_pretty(state).expect("the state serialises");
-        std::fs::write(&tmp, text).map_err(io(&tmp))?;
-        std::fs::rename(&tmp, &path).map_err(io(&path))
+        replace_with(&self.state(), |tmp| std::fs::write(tmp, text).map_err(io(tmp)))
     }
 }
 

@@ -32,7 +32,6 @@ pub mod batch;
 pub mod checkpoint;
 pub mod config;
 pub mod correspondence;
-pub mod files;
 pub mod flow;
 pub mod hypotheses;
 pub mod inference;

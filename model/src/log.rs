@@ -6,10 +6,10 @@ use std::fs::File;
 use std::io::{BufRead, BufReader, BufWriter, Write};
 use std::path::{Path, PathBuf};
 
-use crate::files::{at, FileError};
 use crate::objective::{LossTerms, TERM_NAMES};
 use crate::plot::{draw_loss_curves, Curves};
 use crate::validation::Scores;
+use pairs::atomic::{at, partial_path, replace_file, FileError};
 
 /// One optimiser step.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -129,16 +129,14 @@ fn reopen(
             }
         }
     }
-    let tmp = path.with_extension("csv.partial");
-    {
-        let mut out = BufWriter::new(File::create(&tmp).map_err(io(&tmp))?);
+    let tmp = partial_path(path);
+    replace_file(path, |out| {
         writeln!(out, "{header}").map_err(io(&tmp))?;
         for (line, _) in &kept {
             writeln!(out, "{line}").map_err(io(&tmp))?;
         }
-        out.flush().map_err(io(&tmp))?;
-    }
-    std::fs::rename(&tmp, path).map_err(io(path))?;
+        Ok::<(), LogError>(())
+    })?;
     let file = std::fs::OpenOptions::new().append(true).open(path).map_err(io(path))?;
     Ok((BufWriter::new(file), kept.into_iter().map(|(_, f)| f).collect()))
 }

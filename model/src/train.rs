@@ -421,10 +421,6 @@ impl Trainer {
             support_iou: Some(scores.support_iou),
         };
         if self.state.best.is_none_or(|b| best.beats(&b)) {
-            let root = self.paths.checkpoints.root();
-            std::fs::create_dir_all(root)
-                .map_err(crate::files::at(root))
-                .map_err(CheckpointError::from)?;
             save_weights(&net, &self.paths.checkpoints.best())?;
             self.state.best = Some(best);
         }

@@ -158,6 +158,12 @@ pub enum DatasetError {
     },
 }
 
+impl From<crate::atomic::FileError> for DatasetError {
+    fn from(e: crate::atomic::FileError) -> Self {
+        Self::Io { path: e.path, source: e.source }
+    }
+}
+
 impl DatasetError {
     /// Wraps an I/O error with the file it concerns.
     /// The path is copied only when an error occurs, so success paths stay allocation-free.

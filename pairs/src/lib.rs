@@ -7,7 +7,8 @@
 //! A [`Method`] maps a [`PairInput`] to a [`Prediction`]. The [`transform`] module holds the
 //! motion math every crate shares, and [`dataset`] reads and writes dataset folders
 //! (`pairs.mcap`, `index.csv`, `manifest.json`; see docs/FORMAT.md), and [`predictions`]
-//! reads and writes one method's predictions for a dataset (`predictions.mcap`).
+//! reads and writes one method's predictions for a dataset (`predictions.mcap`). Every file
+//! any crate writes goes through [`atomic`]: whole or not at all.
 //!
 //! ```
 //! use pairs::{synthetic, Pair};
@@ -30,6 +31,7 @@
 //! ```
 #![deny(missing_docs)]
 
+pub mod atomic;
 pub mod cloud;
 pub mod dataset;
 pub mod error;

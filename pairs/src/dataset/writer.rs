@@ -19,6 +19,7 @@ use super::viz::{
     self, COMPRESSED_IMAGE_JSON_SCHEMA, COMPRESSED_IMAGE_SCHEMA, POINT_CLOUD_JSON_SCHEMA,
     POINT_CLOUD_SCHEMA, VIZ_OFFSET, VIZ_P_TOPIC, VIZ_Q_TOPIC,
 };
+use crate::atomic::{at, partial_path, replace_with};
 use crate::error::DatasetError;
 use crate::pair::Pair;
 use crate::scan::{PairImages, Scan, ScanImages, IMAGES_DIR};
@@ -27,8 +28,6 @@ use crate::scan::{PairImages, Scan, ScanImages, IMAGES_DIR};
 pub const PAIRS_FILE: &str = "pairs.mcap";
 /// Name of the index file in a dataset folder.
 pub const INDEX_FILE: &str = "index.csv";
-/// Suffix of files being written.
-const PARTIAL: &str = ".partial";
 /// Uncompressed chunk size: bounds the writer's memory whatever the dataset size.
 const CHUNK_BYTES: u64 = 4 << 20;
 /// Nanoseconds between consecutive pairs, so that Foxglove shows one pair per second.
@@ -57,8 +56,9 @@ struct Channels {
     images: BTreeMap<String, u16>,
 }
 
+/// The temporary sibling of `dir/name`, renamed into place when the dataset is finished.
 fn partial(dir: &Path, name: &str) -> PathBuf {
-    dir.join(format!("{name}{PARTIAL}"))
+    partial_path(&dir.join(name))
 }
 
 impl DatasetWriter {
@@ -274,11 +274,9 @@ impl DatasetWriter {
             counts: self.counts,
             files,
         };
-        let tmp = partial(&self.dir, MANIFEST_FILE);
         let mut text = serde_json::to_vec_pretty(&manifest).expect("a manifest always serialises");
         text.push(b'\n');
-        std::fs::write(&tmp, text).map_err(DatasetError::io(&tmp))?;
-        std::fs::rename(&tmp, &manifest_path).map_err(DatasetError::io(&manifest_path))?;
+        replace_with(&manifest_path, |tmp| std::fs::write(tmp, text).map_err(at(tmp)))?;
         Ok(manifest)
     }
 }

@@ -14,6 +14,7 @@ use super::schema::{
     PredictionHeader, PredictionRecord, HEADER_SCHEMA, HEADER_TOPIC, PREDICTIONS_VERSION,
     PREDICTION_ENCODING, PREDICTION_SCHEMA, PREDICTION_TOPIC,
 };
+use crate::atomic::partial_path;
 use crate::error::PredictionsError;
 
 /// Uncompressed chunk size: bounds the writer's memory whatever the number of pairs.
@@ -33,9 +34,7 @@ pub struct PredictionWriter {
 impl PredictionWriter {
     /// Starts `path` (as `path.partial`) with `header`.
     pub fn create(path: &Path, header: &PredictionHeader) -> Result<Self, PredictionsError> {
-        let mut name = path.as_os_str().to_owned();
-        name.push(".partial");
-        let partial = PathBuf::from(name);
+        let partial = partial_path(path);
         let file = File::create(&partial).map_err(PredictionsError::io(&partial))?;
         // One compression thread, so that the bytes do not depend on the machine.
         let mut mcap = WriteOptions::new()
