@@ -39,9 +39,8 @@ impl NormalEquations {
     /// thread count. Only the lower triangle of `J^T W J` is read.
     pub fn step(&self, damping: f64) -> Option<DVector<f64>> {
         let n = self.jtr.len();
-        let system = faer::Mat::from_fn(n, n, |i, j| {
-            self.jtj[(i, j)] + if i == j { damping } else { 0.0 }
-        });
+        let system =
+            faer::Mat::from_fn(n, n, |i, j| self.jtj[(i, j)] + if i == j { damping } else { 0.0 });
         let llt = system.llt(faer::Side::Lower).ok()?;
         let rhs = faer::Col::from_fn(n, |i| self.jtr[i]);
         let solution = llt.solve(&rhs);
