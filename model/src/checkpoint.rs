@@ -183,7 +183,6 @@ impl CheckpointDir {
         optimizer: &ModuleOptimizer,
         state: &TrainState,
     ) -> Result<(), CheckpointError> {
-        std::fs::create_dir_all(&self.root).map_err(io(&self.root))?;
         save_weights(net, &self.model())?;
         replace_with(&self.optimizer(), |tmp| optimizer.save(tmp).map_err(record(tmp)))?;
         let text = serde_json::to_string_pretty(state).expect("the state serialises");
