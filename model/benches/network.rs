@@ -70,7 +70,7 @@ fn bench(c: &mut Criterion) {
                 |b| {
                     b.iter(|| {
                         let (_, _, grads, _) =
-                            batch_gradients(&net, &config, &device, batch, &rotations, stage)
+                            batch_gradients(&net, &config, &device, batch, &rotations, &[], stage)
                                 .expect("a loss");
                         net = optimizer.step(1e-4, net.clone(), grads);
                     })

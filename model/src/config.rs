@@ -4,7 +4,7 @@
 //! authors' release, see DESIGN.md), `cpu` (narrower layers and smaller subsets, for
 //! training on a laptop-class CPU) and `tiny` (for tests).
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
@@ -180,6 +180,18 @@ pub struct TrainConfig {
     /// correspondence modules (the paper) or feeds the segmentation module a detached flow
     /// (the authors' release, which freezes the earlier modules; steadier on small batches).
     pub end_to_end: bool,
+    /// Share of stage 3's pairs, drawn per pair from the seed, whose segmentation module is
+    /// fed the ground-truth flow instead of the network's (0, the default: the network's
+    /// flow for every pair, as in the paper). Mixing in the true flow keeps the module's
+    /// training on clean motions from stage 2 while it adapts to the predicted flow.
+    #[serde(default)]
+    pub stage3_true_flow: f64,
+    /// Weights a new run starts from instead of its seeded initialisation: a burn record of
+    /// the same network sizes, e.g. `model/weights/cpu/model.bpk` to fine-tune the shipped
+    /// network (with `stage1_pairs = 0` and so on). A resumed run takes its weights from the
+    /// checkpoint and never reads this file again.
+    #[serde(default)]
+    pub init_weights: Option<PathBuf>,
     /// Largest angle of the random rotation applied to both clouds of a training pair,
     /// degrees (180: any rotation).
     pub augment_rotation_deg: f64,
@@ -291,6 +303,9 @@ impl TrainConfig {
         if !(0.0..=180.0).contains(&self.augment_rotation_deg) {
             return Err(invalid("augment_rotation_deg", "must be in [0, 180]"));
         }
+        if !(0.0..=1.0).contains(&self.stage3_true_flow) {
+            return Err(invalid("stage3_true_flow", "must be in [0, 1]"));
+        }
         if self.decay_every_pairs == 0 || self.validate_every_pairs == 0 {
             return Err(invalid("decay_every_pairs", "pair counts must be positive"));
         }
@@ -358,6 +373,21 @@ mod tests {
             let c = TrainConfig::built_in(name);
             assert_eq!(c.name, name);
         }
+    }
+
+    #[test]
+    fn every_config_file_parses_and_validates() {
+        let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("configs");
+        let mut count = 0;
+        for entry in std::fs::read_dir(&dir).expect("the configs folder") {
+            let path = entry.expect("an entry").path();
+            if path.extension().is_some_and(|e| e == "toml") {
+                let c = TrainConfig::load(path.to_str().expect("a UTF-8 path")).expect("valid");
+                assert_eq!(path.file_stem().and_then(|s| s.to_str()), Some(c.name.as_str()));
+                count += 1;
+            }
+        }
+        assert!(count >= 4, "{count} configs in {}", dir.display());
     }
 
     #[test]

@@ -1,7 +1,7 @@
 //! The multi-task objective of each training stage, with the paper's weights:
 //! stage 1 `L_a + L_b + L_flow`; stage 2 `L_motion + 0.5 L_e` on ground-truth flow;
 //! stage 3 every term, the segmentation module on the predicted flow (detached unless the
-//! run is end to end).
+//! run is end to end), or on the true flow for the pairs a run's `stage3_true_flow` picks.
 
 use burn::prelude::*;
 
@@ -89,13 +89,32 @@ impl Sum {
     }
 }
 
+/// `predicted` with the pairs `true_flow` marks replaced by `truth` (both `[B, N, 3]`);
+/// `predicted` itself when none is marked.
+fn mix_true_flow(predicted: Tensor<3>, truth: Tensor<3>, true_flow: &[bool]) -> Tensor<3> {
+    let [b, _, _] = predicted.dims();
+    let marks: Vec<f32> = (0..b)
+        .map(|i| if true_flow.get(i).copied().unwrap_or(false) { 1.0 } else { 0.0 })
+        .collect();
+    if marks.iter().all(|&m| m == 0.0) {
+        return predicted;
+    }
+    let device = predicted.device();
+    let mask = Tensor::<3>::from_data(TensorData::new(marks, [b, 1, 1]), &device);
+    let keep = mask.clone().neg() + 1.0;
+    predicted * keep + truth * mask
+}
+
 /// The stage's total loss (for `backward`) and its terms; `end_to_end` lets stage 3's
-/// segmentation losses reach the flow and correspondence modules.
+/// segmentation losses reach the flow and correspondence modules, and in stage 3 the pairs
+/// `true_flow` marks (by batch index; missing entries are `false`) feed the segmentation
+/// module the ground-truth flow instead of the predicted one.
 pub fn stage_loss(
     net: &PartNet,
     batch: &TrainingBatch,
     stage: u8,
     end_to_end: bool,
+    true_flow: &[bool],
 ) -> Result<(Tensor<1>, LossTerms), SamplingError> {
     let truth = &batch.truth;
     let mut sum = Sum { total: None, terms: LossTerms::default() };
@@ -118,11 +137,8 @@ pub fn stage_loss(
         if stage == 1 {
             return Ok((sum.total.expect("two terms"), sum.terms));
         }
-        if end_to_end {
-            out.flow
-        } else {
-            out.flow.detach()
-        }
+        let predicted = if end_to_end { out.flow } else { out.flow.detach() };
+        mix_true_flow(predicted, truth.flow.clone(), true_flow)
     };
     let steps =
         if stage == 3 { truth.parts_per_pair.iter().copied().max().unwrap_or(1) + 2 } else { 0 };

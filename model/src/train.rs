@@ -19,7 +19,9 @@ use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 
 use crate::batch::TrainingBatch;
-use crate::checkpoint::{save_weights, Best, CheckpointDir, CheckpointError, TrainState};
+use crate::checkpoint::{
+    load_weights, save_weights, Best, CheckpointDir, CheckpointError, TrainState,
+};
 use crate::config::TrainConfig;
 use crate::log::{Log, LogError, StepPhases, StepRow, ValidationRow};
 use crate::network::PartNet;
@@ -150,6 +152,18 @@ fn augmentation(config: &TrainConfig, step: u64, index: usize) -> Matrix3 {
     *Rotation3::from_scaled_axis(axis * angle).matrix()
 }
 
+/// Whether pair `index` of step `step` feeds stage 3's segmentation module the true flow: a
+/// draw with probability `stage3_true_flow`, from its own stream of the seed (so the
+/// augmentation's draws stay as they were).
+fn fed_true_flow(config: &TrainConfig, step: u64, index: usize) -> bool {
+    if config.stage3_true_flow <= 0.0 {
+        return false;
+    }
+    let mut rng = ChaCha8Rng::seed_from_u64(config.seed ^ step.wrapping_mul(0xD1B5_4A32_D192_ED03));
+    rng.set_stream(index as u64);
+    rng.random_bool(config.stage3_true_flow.min(1.0))
+}
+
 /// The loss of a batch, its terms, the gradients and the time of each phase (the optimiser's
 /// left at zero, for the caller): the whole batch at once, or split
 /// into `replicas` equal shards run on their own threads, each on a replica of the
@@ -162,18 +176,19 @@ pub fn batch_gradients(
     device: &Device,
     pairs: &[Pair],
     rotations: &[Matrix3],
+    true_flow: &[bool],
     stage: u8,
 ) -> Result<(f32, LossTerms, GradientsParams, StepPhases), SamplingError> {
     let shards = config.replicas.clamp(1, pairs.len().max(1));
     // One shard: its batch, forward pass and loss, and backward pass (the loss scaled by
     // `share`), each timed.
-    let run = |net: &PartNet, pairs: &[Pair], rotations: &[Matrix3], share: f32| {
+    let run = |net: &PartNet, pairs: &[Pair], rotations: &[Matrix3], marks: &[bool], share: f32| {
         let mut phases = StepPhases::default();
         let clock = Instant::now();
         let batch = TrainingBatch::new(pairs, rotations, &config.network, device)?;
         phases.batch = clock.elapsed().as_secs_f64();
         let clock = Instant::now();
-        let (loss, terms) = stage_loss(net, &batch, stage, config.end_to_end)?;
+        let (loss, terms) = stage_loss(net, &batch, stage, config.end_to_end, marks)?;
         let value = loss.clone().into_scalar::<f32>();
         phases.forward = clock.elapsed().as_secs_f64();
         let clock = Instant::now();
@@ -182,22 +197,26 @@ pub fn batch_gradients(
         Ok::<_, SamplingError>((value, terms, grads, phases))
     };
     if shards == 1 {
-        return run(net, pairs, rotations, 1.0);
+        return run(net, pairs, rotations, true_flow, 1.0);
     }
     let size = pairs.len().div_ceil(shards);
-    let jobs: Vec<(PartNet, &[Pair], &[Matrix3])> = pairs
+    let jobs: Vec<_> = pairs
         .chunks(size)
         .zip(rotations.chunks(size))
-        .map(|(chunk, rots)| (net.clone().map(&mut FreshLeaves), chunk, rots))
+        .enumerate()
+        .map(|(k, (chunk, rots))| {
+            let marks = true_flow.get(k * size..).unwrap_or(&[]);
+            (net.clone().map(&mut FreshLeaves), chunk, rots, marks)
+        })
         .collect();
     // The shards run on long-lived threads: a thread that exits makes the allocator hand its
     // memory back to the kernel, and the next step would page-fault it in again.
     type Shard = Result<(f32, LossTerms, GradientsParams, StepPhases), SamplingError>;
     let results: Vec<Shard> = replica_pool().install(|| {
         jobs.into_par_iter()
-            .map(|(replica, chunk, rots)| {
+            .map(|(replica, chunk, rots, marks)| {
                 let share = chunk.len() as f32 / pairs.len() as f32;
-                let (value, terms, grads, phases) = run(&replica, chunk, rots, share)?;
+                let (value, terms, grads, phases) = run(&replica, chunk, rots, marks, share)?;
                 Ok((value * share, terms.scaled(share), grads, phases))
             })
             .collect()
@@ -317,7 +336,13 @@ impl Trainer {
                 (net, optimizer, state)
             }
             None => {
-                let net = PartNet::seeded(&config.network, &device, config.seed);
+                let net = match &config.init_weights {
+                    Some(path) => {
+                        tracing::info!(weights = %path.display(), "starting from weights");
+                        load_weights(&config.network, path, &device)?
+                    }
+                    None => PartNet::seeded(&config.network, &device, config.seed),
+                };
                 let state = TrainState {
                     config: config.clone(),
                     step: 0,
@@ -378,9 +403,18 @@ impl Trainer {
         let rotations: Vec<Matrix3> =
             (0..pairs.len()).map(|i| augmentation(&self.config, step, i)).collect();
         let stage = self.config.stage_at(self.state.pairs);
-        let (value, terms, grads, mut phases) =
-            batch_gradients(&self.net, &self.config, &self.device, &pairs, &rotations, stage)
-                .map_err(|source| TrainError::Batch { step, source })?;
+        let true_flow: Vec<bool> =
+            (0..pairs.len()).map(|i| fed_true_flow(&self.config, step, i)).collect();
+        let (value, terms, grads, mut phases) = batch_gradients(
+            &self.net,
+            &self.config,
+            &self.device,
+            &pairs,
+            &rotations,
+            &true_flow,
+            stage,
+        )
+        .map_err(|source| TrainError::Batch { step, source })?;
         if !value.is_finite() {
             return Err(TrainError::Diverged { step, stage, value });
         }

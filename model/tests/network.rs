@@ -182,9 +182,12 @@ fn two_replicas_sum_the_gradients_of_their_halves_of_the_batch() {
     let rotations = vec![Matrix3::identity(); 4];
     let device = Device::flex().autodiff();
     let net = PartNet::seeded(&one.network, &device, 5);
+    // Stage 3 with the true flow fed for the first and last pair: each shard gets its marks.
+    let marks = [true, false, false, true];
     for stage in [1u8, 3] {
         let (value, _, grads, phases) =
-            batch_gradients(&net, &two, &device, &pairs, &rotations, stage).expect("a step");
+            batch_gradients(&net, &two, &device, &pairs, &rotations, &marks, stage)
+                .expect("a step");
         assert!(phases.batch > 0.0 && phases.forward > 0.0 && phases.backward > 0.0);
         assert_eq!(phases.optimizer, 0.0, "the optimiser is the caller's");
         let together = gradient_values(&net, &grads);
@@ -196,7 +199,8 @@ fn two_replicas_sum_the_gradients_of_their_halves_of_the_batch() {
                     &one,
                     &device,
                     &pairs[range.clone()],
-                    &rotations[range],
+                    &rotations[range.clone()],
+                    &marks[range],
                     stage,
                 )
                 .expect("a step");
@@ -233,4 +237,72 @@ fn a_two_replica_run_is_deterministic_and_resumes_bit_identically() {
     let straight = run(dirs[0].path(), &[5]);
     assert_eq!(straight, run(dirs[1].path(), &[5]), "two identical runs differ");
     assert_eq!(straight, run(dirs[2].path(), &[2, 3]), "resuming changed the weights");
+}
+
+/// Every parameter's values, in module order.
+fn parameter_values(net: &PartNet) -> Vec<Vec<f32>> {
+    struct Collect(Vec<Vec<f32>>);
+    impl burn::module::ModuleVisitor for Collect {
+        fn visit_float<const D: usize>(&mut self, param: &burn::module::Param<Tensor<D>>) {
+            self.0.push(param.val().into_data().convert::<f32>().try_to_vec().expect("f32"));
+        }
+    }
+    let mut visitor = Collect(Vec::new());
+    net.visit(&mut visitor);
+    visitor.0
+}
+
+#[test]
+fn a_run_with_init_weights_starts_from_them() {
+    let dir = tempfile::tempdir().expect("a temporary folder");
+    let file = dir.path().join("start.bpk");
+    let start = PartNet::seeded(&tiny().network, &Device::flex(), 11);
+    save_weights(&start, &file).expect("saved");
+    let config = TrainConfig { init_weights: Some(file.clone()), ..tiny() };
+    let pairs = some_pairs(&config, 2);
+    let trainer = Trainer::on_pairs(
+        config.clone(),
+        paths(&dir.path().join("run")),
+        Device::flex().autodiff(),
+        pairs.clone(),
+    )
+    .expect("a trainer");
+    let expected = parameter_values(&start);
+    assert_eq!(parameter_values(&trainer.network().valid()), expected);
+    let seeded = Trainer::on_pairs(
+        tiny(),
+        paths(&dir.path().join("seeded")),
+        Device::flex().autodiff(),
+        pairs.clone(),
+    )
+    .expect("a trainer");
+    assert_ne!(parameter_values(&seeded.network().valid()), expected, "another seed");
+    let missing = TrainConfig { init_weights: Some(dir.path().join("none.bpk")), ..tiny() };
+    let err =
+        Trainer::on_pairs(missing, paths(&dir.path().join("m")), Device::flex().autodiff(), pairs)
+            .expect_err("a missing weights file");
+    assert!(err.to_string().contains("none.bpk"), "{err}");
+}
+
+#[test]
+fn stage_three_on_the_true_flow_sees_what_stage_two_sees() {
+    use model::batch::TrainingBatch;
+    use model::objective::stage_loss;
+    use pairs::math::Matrix3;
+    let config = tiny();
+    let pairs = some_pairs(&config, 2);
+    let rotations = vec![Matrix3::identity(); 2];
+    let device = Device::flex();
+    let batch = TrainingBatch::new(&pairs, &rotations, &config.network, &device).expect("batch");
+    let net = fresh_net(&config);
+    let terms =
+        |stage, marks: &[bool]| stage_loss(&net, &batch, stage, false, marks).expect("a loss").1;
+    let truth = terms(2, &[]);
+    let fed_truth = terms(3, &[true, true]);
+    assert_eq!((fed_truth.motion, fed_truth.support), (truth.motion, truth.support));
+    assert!(fed_truth.segment.is_some() && truth.segment.is_none(), "stage 3 runs the RPEN");
+    let predicted = terms(3, &[]);
+    assert_ne!(predicted.motion, truth.motion, "an untrained flow is not the true one");
+    let half = terms(3, &[true, false]);
+    assert!(half.motion != truth.motion && half.motion != predicted.motion);
 }

@@ -18,7 +18,7 @@ use pairs::Pair;
 fn full_objective(net: &PartNet, pairs: &[Pair], config: &TrainConfig, device: &Device) -> f32 {
     let rotations = vec![Matrix3::identity(); pairs.len()];
     let batch = TrainingBatch::new(pairs, &rotations, &config.network, device).expect("a batch");
-    stage_loss(net, &batch, 3, false).expect("a loss").0.into_scalar::<f32>()
+    stage_loss(net, &batch, 3, false, &[]).expect("a loss").0.into_scalar::<f32>()
 }
 
 #[test]
