@@ -1,4 +1,6 @@
-//! The paper's Table 4: the iterative network (`net-iter`) scored after every pass, as
+//! The paper's Table 4, a board written from the per-pass scores that the iterative row's
+//! run keeps in the runs cache ([`crate::passes`]): the iterative network (`net-iter`)
+//! scored after every pass, as
 //! `iterations.csv` (one row per dataset and iteration: EPE, RI, IoU, and how many pairs
 //! were still changing) and `iterations.svg`/`.png` (the three curves); and `iterations_joints.csv`,
 //! the joints estimated from its first and last passes ([`crate::joints`]). A pair that
@@ -9,16 +11,16 @@
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
-use model::method::NetworkMethod;
-use pairs::metrics::{epe, matched_iou, rand_index};
-use pairs::Pair;
 use plotters::prelude::*;
-use rayon::prelude::*;
 
 use crate::error::EvalError;
 use crate::joints::{median, JointScores};
+use crate::passes::{PairPasses, PassScore};
 use crate::plots::PALETTE;
 use pairs::atomic::replace_file;
+
+/// The row whose passes make the iteration board: the network's iterative procedure.
+pub const ITERATIVE_ROW: &str = "net-iter";
 
 /// The scores of one iteration on one dataset.
 #[derive(Debug, Clone, PartialEq)]
@@ -39,10 +41,6 @@ pub struct IterationRow {
     pub iou: f64,
 }
 
-/// Per pair and iteration: EPE, RI, the summed IoU and the part count; pairs that failed
-/// are skipped (with a warning) so one bad pair does not hide the table.
-type PairScores = Vec<(f64, f64, f64, usize)>;
-
 /// The joint scores of the first pass (`net`) and of the last (`net-iter`) on one dataset.
 #[derive(Debug, Clone, PartialEq)]
 pub struct JointRow {
@@ -54,65 +52,20 @@ pub struct JointRow {
     pub scores: JointScores,
 }
 
-/// One pair's scores per iteration and the joint scores of its first and last passes.
-fn score_pair(
-    method: &NetworkMethod,
-    pair: &Pair,
-) -> Result<(PairScores, [JointScores; 2]), String> {
-    let inference = method.infer(pair.input()).map_err(|e| e.to_string())?;
+/// The iteration table of one dataset and the joint scores of the first and last passes,
+/// from the per-pass scores of the iterative row's run ([`crate::passes`], in pair order;
+/// pairs that failed have none).
+pub fn iteration_table(dataset: &str, scored: &[PairPasses]) -> (Vec<IterationRow>, Vec<JointRow>) {
+    let scored: Vec<&[PassScore]> =
+        scored.iter().map(|p| p.passes.as_slice()).filter(|p| !p.is_empty()).collect();
     let mut joints = [JointScores::default(), JointScores::default()];
-    if let (Some(first), Some(last)) = (inference.iterations.first(), inference.iterations.last()) {
-        joints[0].add(pair, &first.prediction);
-        joints[1].add(pair, &last.prediction);
-    }
-    let truth = pair.truth();
-    inference
-        .iterations
-        .iter()
-        .map(|it| {
-            let p = &it.prediction;
-            let flow = p.flow.as_deref().unwrap_or_default();
-            let e = epe(flow, &truth.flow).map_err(|e| e.to_string())?;
-            let ri = rand_index(&p.segments_p, &truth.part_p).map_err(|e| e.to_string())?;
-            let m = matched_iou(&p.segments_p, &truth.part_p).map_err(|e| e.to_string())?;
-            Ok((e, ri, m.iou.iter().sum(), m.iou.len()))
-        })
-        .collect::<Result<PairScores, String>>()
-        .map(|scores| (scores, joints))
-}
-
-/// Scores every iteration of `method` on `pairs`, and the joints of its first and last
-/// passes; `tick` is called after each pair. Pairs run in parallel; the results are
-/// gathered in pair order, so the table does not depend on the thread count.
-pub fn iteration_table(
-    method: &NetworkMethod,
-    dataset: &str,
-    pairs: &[Pair],
-    tick: impl Fn() + Sync,
-) -> (Vec<IterationRow>, Vec<JointRow>) {
-    let results: Vec<_> = pairs
-        .par_iter()
-        .map(|pair| {
-            let result = score_pair(method, pair);
-            tick();
-            result
-        })
-        .collect();
-    let mut scored: Vec<PairScores> = Vec::with_capacity(pairs.len());
-    let mut joints = [JointScores::default(), JointScores::default()];
-    for (pair, result) in pairs.iter().zip(results) {
-        match result {
-            Ok((s, pair_joints)) if !s.is_empty() => {
-                scored.push(s);
-                for (total, one) in joints.iter_mut().zip(pair_joints) {
-                    total.merge(one);
-                }
-            }
-            Ok(_) => {}
-            Err(e) => tracing::warn!("{dataset} pair {}: {e}", pair.id()),
+    for passes in &scored {
+        if let (Some(first), Some(last)) = (passes.first(), passes.last()) {
+            joints[0].merge(first.joints.clone());
+            joints[1].merge(last.joints.clone());
         }
     }
-    let most = scored.iter().map(Vec::len).max().unwrap_or(0);
+    let most = scored.iter().map(|s| s.len()).max().unwrap_or(0);
     let [first, last] = joints;
     let joint_rows = [("net", first), ("net-iter", last)]
         .into_iter()
@@ -120,18 +73,17 @@ pub fn iteration_table(
         .collect();
     let rows = (0..most)
         .map(|t| {
-            let at: Vec<&(f64, f64, f64, usize)> =
-                scored.iter().map(|s| &s[t.min(s.len() - 1)]).collect();
+            let at: Vec<&PassScore> = scored.iter().map(|s| &s[t.min(s.len() - 1)]).collect();
             let n = at.len().max(1) as f64;
-            let parts: usize = at.iter().map(|s| s.3).sum();
+            let parts: usize = at.iter().map(|s| s.parts).sum();
             IterationRow {
                 dataset: dataset.to_owned(),
                 iteration: t + 1,
                 pairs: at.len(),
                 running: scored.iter().filter(|s| s.len() > t).count(),
-                epe: at.iter().map(|s| s.0).sum::<f64>() / n,
-                rand_index: at.iter().map(|s| s.1).sum::<f64>() / n,
-                iou: at.iter().map(|s| s.2).sum::<f64>() / parts.max(1) as f64,
+                epe: at.iter().map(|s| s.epe).sum::<f64>() / n,
+                rand_index: at.iter().map(|s| s.rand_index).sum::<f64>() / n,
+                iou: at.iter().map(|s| s.iou_sum).sum::<f64>() / parts.max(1) as f64,
             }
         })
         .collect();
@@ -260,33 +212,38 @@ fn draw<DB: DrawingBackend>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use burn::prelude::Device;
-    use model::config::TrainConfig;
-    use model::inference::InferenceParams;
-    use model::network::PartNet;
-    use pairs::synthetic::hinge_pair;
+
+    fn pass(epe: f64, iou_sum: f64, parts: usize, typed: usize) -> PassScore {
+        let joints = JointScores {
+            joints: 1,
+            type_correct: typed,
+            axis_errors: vec![epe],
+            pivot_distances: vec![],
+        };
+        PassScore { epe, rand_index: 1.0 - epe, iou_sum, parts, joints }
+    }
 
     #[test]
-    fn the_table_does_not_depend_on_the_thread_count() {
-        let config = TrainConfig::built_in("tiny");
-        let pairs: Vec<Pair> =
-            (0..3).map(|k| hinge_pair(&format!("h{k}"), 12, 0.3 + 0.3 * k as f32)).collect();
-        let table = |threads: usize| {
-            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().expect("pool");
-            pool.install(|| {
-                let net = PartNet::seeded(&config.network, &Device::flex(), 5);
-                let params = InferenceParams { max_iterations: 3, ..InferenceParams::iterative() };
-                let method = NetworkMethod::with_params("net-iter", net, params);
-                iteration_table(&method, "hinges", &pairs, || {})
-            })
-        };
-        let (rows, joints) = table(1);
-        assert!((1..=3).contains(&rows.len()));
-        assert!(rows.iter().all(|r| r.pairs == 3 && r.epe.is_finite()));
-        assert_eq!(rows[0].running, 3);
-        assert_eq!(joints.len(), 2);
-        assert_eq!(joints[0].scores.joints, 3, "one hinge per pair");
-        assert_eq!(table(2), (rows, joints));
+    fn a_converged_pair_keeps_its_last_pass_and_iou_averages_over_parts() {
+        let scored = [
+            PairPasses {
+                pair: "a".into(),
+                passes: vec![pass(0.1, 1.0, 2, 0), pass(0.05, 2.0, 2, 1)],
+            },
+            PairPasses { pair: "b".into(), passes: vec![pass(0.3, 1.0, 3, 1)] },
+            PairPasses { pair: "c".into(), passes: vec![] },
+        ];
+        let (rows, joints) = iteration_table("d", &scored);
+        let close = |a: f64, b: f64| (a - b).abs() < 1e-12;
+        assert_eq!(rows.len(), 2);
+        assert_eq!((rows[0].pairs, rows[0].running, rows[1].running), (2, 2, 1));
+        assert!(close(rows[0].epe, 0.2) && close(rows[1].epe, 0.175));
+        assert!(close(rows[0].iou, 2.0 / 5.0) && close(rows[1].iou, 3.0 / 5.0));
+        assert!(close(rows[1].rand_index, 1.0 - 0.175));
+        assert_eq!((joints[0].method.as_str(), joints[1].method.as_str()), ("net", "net-iter"));
+        assert_eq!((joints[0].scores.joints, joints[0].scores.type_correct), (2, 1));
+        assert_eq!((joints[1].scores.joints, joints[1].scores.type_correct), (2, 2));
+        assert_eq!(joints[1].scores.axis_errors, vec![0.05, 0.3]);
     }
 
     #[test]

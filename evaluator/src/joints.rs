@@ -1,9 +1,9 @@
-//! Joint scores of `--iterations` (first and last pass) summed over pairs with medians,
-//! from the same per-joint metric as `joints.csv` (`pairs::metrics::joints`): joint type,
-//! axis angle `min(θ, 180° − θ)` and, for revolute joints estimated as revolute, the
-//! distance between the estimated and the true axis lines (normalised units). A joint whose
-//! part has no segment, or whose segment does not move relative to the base, counts as a
-//! wrong type.
+//! Joint scores of the iteration board (first and last pass of `net-iter`) summed over
+//! pairs with medians, from the same per-joint metric as `joints.csv`
+//! (`pairs::metrics::joints`): joint type, axis angle `min(θ, 180° − θ)` and, for revolute
+//! joints estimated as revolute, the distance between the estimated and the true axis lines
+//! (normalised units). A joint whose part has no segment, or whose segment does not move
+//! relative to the base, counts as a wrong type.
 
 use pairs::metrics::{joint_errors, matched_iou};
 use pairs::{Pair, Prediction};

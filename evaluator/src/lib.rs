@@ -30,6 +30,7 @@ pub mod joints;
 pub mod leaderboard;
 pub mod memory;
 pub mod paper;
+pub mod passes;
 pub mod pipeline;
 pub mod plots;
 pub mod record;

@@ -10,13 +10,12 @@ use evaluator::commands::{
     add_remembered_rows, score_predictions, write_predictions, CommandOptions, PredictRequest,
 };
 use evaluator::datasets::{
-    default_datasets, load_dataset, parse_user_dataset, remember_datasets, remembered_datasets,
+    default_datasets, parse_user_dataset, remember_datasets, remembered_datasets,
     validation_datasets, DatasetSpec,
 };
-use evaluator::iterations::{iteration_table, write_iterations};
 use evaluator::joints;
-use evaluator::pipeline::{evaluate, Options, Progress};
-use evaluator::standard::{iterative_network, load_network, standard_registry, DEFAULT_WEIGHTS};
+use evaluator::pipeline::{evaluate, Options, Progress, Summary};
+use evaluator::standard::{standard_registry, DEFAULT_WEIGHTS};
 use indicatif::{ProgressBar, ProgressStyle};
 
 #[derive(Parser, Debug)]
@@ -29,7 +28,7 @@ use indicatif::{ProgressBar, ProgressStyle};
   evaluator --methods gt,net --limit 50             two rows on the first 50 pairs
   evaluator --methods seqransac@net-flow --force    recompute one row
   evaluator --dataset lamps=datasets/lamps --methods net,seqransac@net-flow   a user's dataset
-  evaluator --methods net,net-iter --iterations --limit 50   Table 4 on 50 pairs
+  evaluator --methods net-iter --limit 50           Table 4 (iterations.csv) on 50 pairs
   evaluator --list                                  the registered rows and datasets
   evaluator score --dataset sf2f --predictions mine.mcap --name mine   a method run elsewhere
   evaluator predict --method net --dataset sf2f --out net.mcap          a row's predictions",
@@ -70,10 +69,6 @@ struct Args {
     /// Pairs per dataset in the segmentation gallery.
     #[arg(long, default_value_t = 3)]
     gallery_pairs: usize,
-    /// Also score net-iter after every iteration into <reports>/iterations.csv and
-    /// iterations.svg (the paper's Table 4) on the selected datasets.
-    #[arg(long)]
-    iterations: bool,
     /// List the registered rows and datasets, then exit.
     #[arg(long)]
     list: bool,
@@ -337,7 +332,6 @@ fn run(args: Args) -> Result<()> {
         }
         datasets.extend(args.user_datasets.iter().map(|s| s.name.clone()));
     }
-    let selected = datasets.clone();
     let options = Options {
         datasets,
         methods: args.methods,
@@ -363,47 +357,20 @@ fn run(args: Args) -> Result<()> {
         started.elapsed().as_secs_f64(),
         summary.reports.display()
     );
-    if args.iterations {
-        write_iteration_table(&args.weights, &specs, &selected, &options, &summary.reports)?;
-    }
+    print_iterations(&summary);
     Ok(())
 }
 
-/// `--iterations`: net-iter's scores after every pass on each selected dataset.
-fn write_iteration_table(
-    weights: &Path,
-    specs: &[DatasetSpec],
-    selected: &[String],
-    options: &Options,
-    reports: &Path,
-) -> Result<()> {
-    let (net, _) = load_network(weights)
-        .with_context(|| format!("loading the network from {}", weights.display()))?;
-    let method = iterative_network(net);
-    let (mut rows, mut joint_rows) = (Vec::new(), Vec::new());
-    for spec in specs.iter().filter(|s| selected.is_empty() || selected.contains(&s.name)) {
-        let dataset = load_dataset(&spec.name, &spec.dir(&options.datasets_root), options.limit)
-            .with_context(|| format!("loading dataset {}", spec.name))?;
-        let bar = ProgressBar::new(dataset.pairs.len() as u64).with_style(
-            ProgressStyle::with_template("{msg:40} [{bar:30}] {pos}/{len} {elapsed}<{eta}")
-                .expect("the template is valid")
-                .progress_chars("=> "),
-        );
-        bar.set_message(format!("net-iter iterations on {}", spec.name));
-        let (table, joints) = iteration_table(&method, &spec.name, &dataset.pairs, || bar.inc(1));
-        rows.extend(table);
-        joint_rows.extend(joints);
-        bar.finish_and_clear();
-    }
-    let files = write_iterations(reports, &rows, &joint_rows)
-        .with_context(|| format!("writing the iteration table into {}", reports.display()))?;
-    for row in &rows {
+/// The iteration board's rows (net-iter after every pass, the paper's Table 4), when any
+/// dataset has net-iter's run.
+fn print_iterations(summary: &Summary) {
+    for row in &summary.iterations {
         eprintln!(
             "{} iteration {:2}: EPE {:.4} RI {:.4} IoU {:.4} ({} of {} pairs still running)",
             row.dataset, row.iteration, row.epe, row.rand_index, row.iou, row.running, row.pairs
         );
     }
-    for row in &joint_rows {
+    for row in &summary.iteration_joints {
         let s = &row.scores;
         eprintln!(
             "{} {} joints: {} of {} typed right, median axis error {:.1}°, median pivot distance {:.3}",
@@ -415,11 +382,6 @@ fn write_iteration_table(
             joints::median(&s.pivot_distances)
         );
     }
-    eprintln!(
-        "wrote {}",
-        files.iter().map(|f| f.display().to_string()).collect::<Vec<_>>().join(", ")
-    );
-    Ok(())
 }
 
 /// jemalloc keeps freed large blocks for reuse (see the workspace's Cargo.toml).

@@ -1,6 +1,7 @@
 //! The whole evaluation: make missing datasets, load them, run every selected row on every
 //! selected dataset (reusing matching cached runs), then write the leaderboards, plots,
-//! gallery and `LEADERBOARD.md` under the reports folder. Rows not selected still appear
+//! gallery, `LEADERBOARD.md` and the iteration board (from `net-iter`'s per-pass scores)
+//! under the reports folder. Rows not selected still appear
 //! in the tables when their cached runs match, so recomputing one row keeps the others; a
 //! run limited to the first N pairs writes under `<reports>/limit-<N>/` and leaves the
 //! full-dataset reports alone.
@@ -14,6 +15,7 @@ use rayon::prelude::*;
 use crate::datasets::{ensure_dataset, load_dataset, DatasetSpec, LoadedDataset};
 use crate::error::EvalError;
 use crate::gallery::{write_picture, GalleryPicture};
+use crate::iterations::{iteration_table, write_iterations, IterationRow, JointRow, ITERATIVE_ROW};
 use crate::leaderboard::{Leaderboards, Scored};
 use crate::plots::write_pcc_plots;
 use crate::registry::{Board, Entry, Registry, Runner};
@@ -84,6 +86,11 @@ pub struct Summary {
     pub reports: PathBuf,
     /// The sweeps of the tuned rows in the tables.
     pub sweeps: Vec<Sweep>,
+    /// The iteration board ([`ITERATIVE_ROW`] after every pass, per dataset), empty when no
+    /// dataset has that row's run.
+    pub iterations: Vec<IterationRow>,
+    /// The joints of its first and last passes, per dataset.
+    pub iteration_joints: Vec<JointRow>,
 }
 
 /// Runs the evaluation described by `options` over `registry`'s rows and `specs`' datasets.
@@ -193,7 +200,18 @@ pub fn evaluate(
     let sweeps: Vec<Sweep> =
         sweeps.into_iter().filter(|s| scored.iter().any(|r| r.entry.name == s.row)).collect();
     write_report(&reports, &boards, &gallery, &sweeps)?;
-    Ok(Summary { boards, fresh, cached, failed, reports, sweeps })
+    let (mut iterations, mut iteration_joints) = (Vec::new(), Vec::new());
+    for s in scored.iter().filter(|s| s.entry.name == ITERATIVE_ROW) {
+        if let Some(passes) = &s.result.passes {
+            let (rows, joints) = iteration_table(s.dataset, passes);
+            iterations.extend(rows);
+            iteration_joints.extend(joints);
+        }
+    }
+    if !iterations.is_empty() {
+        write_iterations(&reports, &iterations, &iteration_joints)?;
+    }
+    Ok(Summary { boards, fresh, cached, failed, reports, sweeps, iterations, iteration_joints })
 }
 
 /// Every prediction of row `row` on the dataset `options.datasets[0]` (made when missing),

@@ -12,13 +12,14 @@ use std::sync::{Arc, Mutex};
 use std::time::Instant;
 
 use pairs::math::Vector3;
-use pairs::{Pair, Prediction};
+use pairs::{Method, Pair, Prediction};
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 
 use crate::datasets::LoadedDataset;
 use crate::error::EvalError;
 use crate::memory;
+use crate::passes::{passes_path, read_passes, score_passes, write_passes, PairPasses};
 use crate::record::{joint_types, read_records, write_records, PairRecord, RunTable};
 use crate::registry::{method_flow_name, Entry, FlowSource, Runner};
 use crate::score::score_pair;
@@ -51,6 +52,8 @@ pub struct RunResult {
     pub meta: RunMeta,
     /// Whether it came from the cache.
     pub cached: bool,
+    /// Every pass's scores per pair, for a row whose method is iterative (`net-iter`).
+    pub passes: Option<Vec<PairPasses>>,
 }
 
 /// Per pair of a dataset, a flow source's flow or why it has none.
@@ -143,6 +146,39 @@ pub fn predict_pair(
     }
 }
 
+/// The method of a row whose passes are scored one by one ([`Method::iterative`]).
+fn iterative(runner: &Runner) -> Option<&Arc<dyn Method>> {
+    match runner {
+        Runner::Method(m) if m.iterative() => Some(m),
+        _ => None,
+    }
+}
+
+/// The prediction of an iterative method (its last pass) and every pass's scores, or why
+/// the pair failed; `Ok(None)` scores when a pass could not be scored (the prediction stands).
+fn predict_passes(
+    method: &dyn Method,
+    pair: &Pair,
+) -> (Result<Prediction, String>, Option<Vec<crate::passes::PassScore>>) {
+    match guarded(|| method.predict_passes(pair.input()).map_err(|e| e.to_string())) {
+        Ok(mut passes) => {
+            let scores = guarded(|| score_passes(pair, &passes));
+            if let Err(e) = &scores {
+                tracing::warn!(
+                    "{} pair {}: its passes were not scored: {e}",
+                    method.name(),
+                    pair.id()
+                );
+            }
+            match passes.pop() {
+                Some(last) => (Ok(last), scores.ok()),
+                None => (Err(format!("{} made no pass", method.name())), None),
+            }
+        }
+        Err(reason) => (Err(reason), None),
+    }
+}
+
 /// Where the runs file of `entry` on `dataset` lives under `runs`.
 pub fn runs_path(runs: &Path, dataset: &str, entry: &str) -> PathBuf {
     runs.join(dataset).join(format!("{entry}.csv"))
@@ -179,7 +215,19 @@ pub fn cached_run(
     let table = read_records(&path).ok().filter(|t| t.rows.len() == dataset.pairs.len())?;
     let failed = |id: &String| table.rows.iter().any(|r| &r[0] == id && !r[2].is_empty());
     let complete = options.gallery.iter().all(|id| meta.gallery.contains_key(id) || failed(id));
-    complete.then_some(RunResult { table, meta, cached: true })
+    // An iterative row's passes must be there too, and of this dataset's pairs.
+    let passes = match iterative(&entry.runner) {
+        Some(_) => {
+            let passes = read_passes(&passes_path(&path)).ok()?;
+            let known = |p: &PairPasses| dataset.pairs.iter().any(|d| d.id() == p.pair);
+            if !passes.iter().all(known) {
+                return None;
+            }
+            Some(passes)
+        }
+        None => None,
+    };
+    complete.then_some(RunResult { table, meta, cached: true, passes })
 }
 
 /// Runs `entry` on `dataset` (or reuses its cached run unless `force`), calling `progress`
@@ -212,7 +260,13 @@ pub fn run_entry(
     };
     let runner = external.as_ref().unwrap_or(&entry.runner);
     memory::reset_peak();
-    type Outcome = (PairRecord, Option<Vec<u32>>, Result<Vec<Vector3>, String>);
+    let iterative = iterative(runner);
+    type Outcome = (
+        PairRecord,
+        Option<Vec<u32>>,
+        Result<Vec<Vector3>, String>,
+        Option<Vec<crate::passes::PassScore>>,
+    );
     let outcomes: Vec<Outcome> = dataset
         .pairs
         .par_iter()
@@ -220,7 +274,10 @@ pub fn run_entry(
         .map(|(i, pair)| {
             let flow = source_flows.as_ref().map(|f| &f[i]);
             let started = Instant::now();
-            let prediction = predict_pair(runner, pair, flow);
+            let (prediction, passes) = match iterative {
+                Some(m) => predict_passes(m.as_ref(), pair),
+                None => (predict_pair(runner, pair, flow), None),
+            };
             let ms = started.elapsed().as_secs_f64() * 1e3;
             let own_flow = match &prediction {
                 Ok(p) => p.flow.clone().ok_or_else(|| format!("{} reports no flow", entry.name)),
@@ -245,19 +302,25 @@ pub fn run_entry(
                 ms,
                 outcome,
             };
-            (record, segments.filter(|_| keep), own_flow)
+            (record, segments.filter(|_| keep), own_flow, passes)
         })
         .collect();
     let mut gallery = BTreeMap::new();
     let mut records = Vec::with_capacity(outcomes.len());
     let mut own_flows = Vec::with_capacity(outcomes.len());
-    for (record, segments, own_flow) in outcomes {
+    let mut passes = Vec::new();
+    for (record, segments, own_flow, pair_passes) in outcomes {
         if let Some(segments) = segments {
             gallery.insert(record.pair.clone(), segments);
+        }
+        // A pair that failed, or whose passes were not scored, has none.
+        if let (Some(scores), true) = (pair_passes, record.outcome.is_ok()) {
+            passes.push(PairPasses { pair: record.pair.clone(), passes: scores });
         }
         records.push(record);
         own_flows.push(own_flow);
     }
+    let passes = iterative.map(|_| passes);
     if let Runner::Method(m) = &entry.runner {
         flows.offer(m.name(), &dataset.name, own_flows);
     }
@@ -274,6 +337,9 @@ pub fn run_entry(
             .map_err(|source| EvalError::Io { path: meta_path.clone(), source })?;
     }
     write_records(&path, &records)?;
+    if let Some(passes) = &passes {
+        write_passes(&passes_path(&path), passes)?;
+    }
     let json = serde_json::to_string_pretty(&meta).expect("run metadata serialises");
     replace_file(&meta_path, |out| {
         out.write_all(json.as_bytes())
@@ -283,5 +349,5 @@ pub fn run_entry(
         header: crate::record::header(),
         rows: records.iter().map(PairRecord::to_row).collect(),
     };
-    Ok(RunResult { table, meta, cached: false })
+    Ok(RunResult { table, meta, cached: false, passes })
 }

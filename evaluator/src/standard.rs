@@ -25,6 +25,7 @@ use pairs::{Method, Segmenter};
 use sha2::{Digest, Sha256};
 
 use crate::error::EvalError;
+use crate::iterations::ITERATIVE_ROW;
 use crate::reference::OnePart;
 use crate::registry::{Board, FlowSource, Registry, Runner};
 use crate::tuning::{Axis, Grid};
@@ -95,7 +96,7 @@ fn segmenter<S: Segmenter + Debug + 'static>(segmenter: S) -> (Arc<dyn Segmenter
 
 /// The iterative network row, `net-iter` (the paper's full inference procedure).
 pub fn iterative_network(net: PartNet) -> Arc<NetworkMethod> {
-    Arc::new(NetworkMethod::with_params("net-iter", net, InferenceParams::iterative()))
+    Arc::new(NetworkMethod::with_params(ITERATIVE_ROW, net, InferenceParams::iterative()))
 }
 
 /// The `net-iter` row's fingerprint: the network's and the procedure's parameters.

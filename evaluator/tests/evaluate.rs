@@ -285,3 +285,79 @@ fn a_board_of_one_row_prints_its_names_unquoted() {
     assert!(report.contains("| tiny | gt | gt | true | 0.0000 |"), "{report}");
     assert!(!report.contains("\"tiny\""), "{report}");
 }
+
+/// An iterative method under the iteration board's row name: one part in its first pass,
+/// then P split at its median x in a second pass, except on the first pair, where it stops
+/// after one pass. Counts its calls.
+struct TwoPasses {
+    calls: std::sync::atomic::AtomicUsize,
+}
+
+impl Method for TwoPasses {
+    fn name(&self) -> &str {
+        evaluator::iterations::ITERATIVE_ROW
+    }
+
+    fn predict(&self, _: &PairInput) -> Result<Prediction, MethodError> {
+        panic!("an iterative row is run through predict_passes")
+    }
+
+    fn iterative(&self) -> bool {
+        true
+    }
+
+    fn predict_passes(&self, input: &PairInput) -> Result<Vec<Prediction>, MethodError> {
+        self.calls.fetch_add(1, std::sync::atomic::Ordering::SeqCst);
+        let n = input.p.len();
+        let one = Prediction {
+            flow: Some(vec![Vector3::zeros(); n]),
+            segments_p: vec![0; n],
+            ..Prediction::default()
+        };
+        if input.id.ends_with("00000-0") {
+            return Ok(vec![one]);
+        }
+        let mut xs: Vec<f32> = input.p.points.iter().map(|p| p.x).collect();
+        xs.sort_by(f32::total_cmp);
+        let median = xs[n / 2];
+        let split = Prediction {
+            flow: Some(vec![Vector3::new(0.01, 0.0, 0.0); n]),
+            segments_p: input.p.points.iter().map(|p| u32::from(p.x >= median)).collect(),
+            ..Prediction::default()
+        };
+        Ok(vec![one, split])
+    }
+}
+
+#[test]
+fn the_iterative_row_runs_each_pass_once_and_its_board_comes_from_the_cache() {
+    let dir = tempfile::tempdir().expect("a temporary folder");
+    let method = Arc::new(TwoPasses { calls: Default::default() });
+    let mut registry = Registry::new();
+    registry.method(method.clone(), Board::Both, "two passes v1");
+    let calls = || method.calls.load(std::sync::atomic::Ordering::SeqCst);
+    let first = run(dir.path(), &registry);
+    assert_eq!(calls(), 4, "one call per pair, for the row and its board together");
+    let reports = dir.path().join("reports");
+    let table = read(&reports.join("iterations.csv"));
+    let lines: Vec<&str> = table.lines().collect();
+    assert_eq!(lines.len(), 3, "a header and two passes:\n{table}");
+    // Iteration 2: four pairs scored, three still running; the first pair keeps its one pass.
+    assert!(lines[1].starts_with("tiny,1,4,4,") && lines[2].starts_with("tiny,2,4,3,"), "{table}");
+    assert_eq!(first.iterations.len(), 2);
+    assert_ne!(first.iterations[1].epe, first.iterations[0].epe, "the passes differ");
+    assert_eq!(first.iteration_joints.len(), 2);
+    assert!(reports.join("runs/tiny/net-iter.passes.csv").exists());
+    let joints = read(&reports.join("iterations_joints.csv"));
+
+    let again = run(dir.path(), &registry);
+    assert_eq!((again.fresh, again.cached, calls()), (0, 1, 4), "the board is read from the cache");
+    assert_eq!(read(&reports.join("iterations.csv")), table);
+    assert_eq!(read(&reports.join("iterations_joints.csv")), joints);
+
+    // Without its passes the cached run is not complete: the row runs again.
+    std::fs::remove_file(reports.join("runs/tiny/net-iter.passes.csv")).expect("removed");
+    let rerun = run(dir.path(), &registry);
+    assert_eq!((rerun.fresh, calls()), (1, 8));
+    assert_eq!(read(&reports.join("iterations.csv")), table);
+}

@@ -97,7 +97,7 @@ fn result(records: &[PairRecord]) -> RunResult {
         peak_mib: None,
         gallery: BTreeMap::new(),
     };
-    RunResult { table, meta, cached: false }
+    RunResult { table, meta, cached: false, passes: None }
 }
 
 fn mean(values: &[f64]) -> Option<f64> {

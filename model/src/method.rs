@@ -64,6 +64,20 @@ impl Method for NetworkMethod {
     fn predict(&self, input: &PairInput) -> Result<Prediction, MethodError> {
         Ok(self.infer(input)?.prediction())
     }
+
+    /// More than one pass allowed (`net-iter`).
+    fn iterative(&self) -> bool {
+        self.params.max_iterations > 1
+    }
+
+    fn predict_passes(&self, input: &PairInput) -> Result<Vec<Prediction>, MethodError> {
+        let passes: Vec<Prediction> =
+            self.infer(input)?.iterations.into_iter().map(|it| it.prediction).collect();
+        if passes.is_empty() {
+            return Err(MethodError::new(&self.name, &input.id, "the procedure made no pass"));
+        }
+        Ok(passes)
+    }
 }
 
 impl Segmenter for NetworkMethod {

@@ -58,6 +58,19 @@ pub trait Method: Send + Sync {
 
     /// Predicts segments, flow and motions for one pair.
     fn predict(&self, input: &PairInput) -> Result<Prediction, MethodError>;
+
+    /// Whether the method refines its answer over passes that are worth scoring one by one
+    /// (the network's iterative procedure, the paper's Table 4); the evaluator then calls
+    /// [`Method::predict_passes`] instead of [`Method::predict`]. `false` by default.
+    fn iterative(&self) -> bool {
+        false
+    }
+
+    /// Every pass's prediction, the first one first; the last must be what
+    /// [`Method::predict`] returns. By default the one prediction of `predict`.
+    fn predict_passes(&self, input: &PairInput) -> Result<Vec<Prediction>, MethodError> {
+        Ok(vec![self.predict(input)?])
+    }
 }
 
 /// A segmenter over a given flow: segments P (and Q) from P, Q and a flow on P, so one

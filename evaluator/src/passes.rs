@@ -1,0 +1,228 @@
+//! Per-pass scores of an iterative row (`net-iter`: every pass of the network's procedure),
+//! made while the row runs and cached beside its runs file as `<row>.passes.csv`: one line
+//! per pair and pass with the pass's EPE, Rand index, summed IoU and part count, and its
+//! joint scores. The iteration board ([`crate::iterations`], the paper's Table 4) is written
+//! from them, so no pass is ever run twice. A pair whose prediction or any pass's scoring
+//! failed has no lines (its failure is in the runs file).
+
+use std::path::{Path, PathBuf};
+
+use pairs::metrics::{epe, matched_iou, rand_index};
+use pairs::{Pair, Prediction};
+
+use crate::error::EvalError;
+use crate::joints::JointScores;
+use pairs::atomic::replace_file;
+
+/// The scores of one pass on one pair.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PassScore {
+    /// End-point error of the pass's flow.
+    pub epe: f64,
+    /// Rand index of P's segments.
+    pub rand_index: f64,
+    /// Sum of the matched IoU over the pair's ground-truth parts.
+    pub iou_sum: f64,
+    /// Ground-truth parts of P.
+    pub parts: usize,
+    /// The joints estimated from the pass's segments and motions.
+    pub joints: JointScores,
+}
+
+/// Every pass's scores on one pair, the first pass first.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PairPasses {
+    /// The pair's id.
+    pub pair: String,
+    /// One score per pass.
+    pub passes: Vec<PassScore>,
+}
+
+/// Scores each of `passes` (predictions of one pair, the first pass first) against the
+/// pair's ground truth.
+pub fn score_passes(pair: &Pair, passes: &[Prediction]) -> Result<Vec<PassScore>, String> {
+    let truth = pair.truth();
+    passes
+        .iter()
+        .map(|p| {
+            let flow = p.flow.as_deref().unwrap_or_default();
+            let e = epe(flow, &truth.flow).map_err(|e| e.to_string())?;
+            let ri = rand_index(&p.segments_p, &truth.part_p).map_err(|e| e.to_string())?;
+            let m = matched_iou(&p.segments_p, &truth.part_p).map_err(|e| e.to_string())?;
+            let mut joints = JointScores::default();
+            joints.add(pair, p);
+            Ok(PassScore {
+                epe: e,
+                rand_index: ri,
+                iou_sum: m.iou.iter().sum(),
+                parts: m.iou.len(),
+                joints,
+            })
+        })
+        .collect()
+}
+
+/// The passes file beside the runs file `runs_file` (`net-iter.csv` → `net-iter.passes.csv`).
+pub fn passes_path(runs_file: &Path) -> PathBuf {
+    runs_file.with_extension("passes.csv")
+}
+
+const HEADER: [&str; 10] = [
+    "pair",
+    "pass",
+    "epe",
+    "ri",
+    "iou_sum",
+    "parts",
+    "joints",
+    "type_correct",
+    "axis_errors",
+    "pivot_distances",
+];
+
+/// A number as the shortest text that parses back to the same `f64`.
+fn num(v: f64) -> String {
+    format!("{v:?}")
+}
+
+/// A list of numbers, `;`-separated.
+fn list(values: &[f64]) -> String {
+    values.iter().map(|&v| num(v)).collect::<Vec<_>>().join(";")
+}
+
+/// Writes `pairs`' passes to `path`, replacing an old file only once the new one is complete.
+pub fn write_passes(path: &Path, pairs: &[PairPasses]) -> Result<(), EvalError> {
+    replace_file(path, |out| {
+        let bad =
+            |e: csv::Error| EvalError::Csv { path: path.to_path_buf(), message: e.to_string() };
+        let mut writer = csv::Writer::from_writer(out);
+        writer.write_record(HEADER).map_err(bad)?;
+        for p in pairs {
+            for (k, s) in p.passes.iter().enumerate() {
+                writer
+                    .write_record([
+                        p.pair.clone(),
+                        (k + 1).to_string(),
+                        num(s.epe),
+                        num(s.rand_index),
+                        num(s.iou_sum),
+                        s.parts.to_string(),
+                        s.joints.joints.to_string(),
+                        s.joints.type_correct.to_string(),
+                        list(&s.joints.axis_errors),
+                        list(&s.joints.pivot_distances),
+                    ])
+                    .map_err(bad)?;
+            }
+        }
+        writer.flush().map_err(|source| EvalError::Io { path: path.to_path_buf(), source })
+    })
+}
+
+/// Reads a passes file: every pair's passes in file order, each pair's numbered 1, 2, ...
+pub fn read_passes(path: &Path) -> Result<Vec<PairPasses>, EvalError> {
+    let bad = |message: String| EvalError::Csv { path: path.to_path_buf(), message };
+    let mut reader = csv::Reader::from_path(path).map_err(|e| bad(e.to_string()))?;
+    let header: Vec<String> =
+        reader.headers().map_err(|e| bad(e.to_string()))?.iter().map(str::to_owned).collect();
+    if header != HEADER {
+        return Err(bad("the header is not this evaluator's (rerun the row)".into()));
+    }
+    let mut pairs: Vec<PairPasses> = Vec::new();
+    for (line, record) in reader.records().enumerate() {
+        let record = record.map_err(|e| bad(e.to_string()))?;
+        let at = |what: &str| format!("line {}: {what}", line + 2);
+        let field = |i: usize| record.get(i).ok_or_else(|| bad(at(&format!("no {}", HEADER[i]))));
+        let float = |i: usize| -> Result<f64, EvalError> {
+            field(i)?.parse().map_err(|_| bad(at(&format!("{} is not a number", HEADER[i]))))
+        };
+        let count = |i: usize| -> Result<usize, EvalError> {
+            field(i)?.parse().map_err(|_| bad(at(&format!("{} is not a count", HEADER[i]))))
+        };
+        let floats = |i: usize| -> Result<Vec<f64>, EvalError> {
+            let cell = field(i)?;
+            if cell.is_empty() {
+                return Ok(Vec::new());
+            }
+            cell.split(';')
+                .map(|v| {
+                    v.parse().map_err(|_| bad(at(&format!("{} holds a non-number", HEADER[i]))))
+                })
+                .collect()
+        };
+        let pair = field(0)?;
+        let pass = count(1)?;
+        let score = PassScore {
+            epe: float(2)?,
+            rand_index: float(3)?,
+            iou_sum: float(4)?,
+            parts: count(5)?,
+            joints: JointScores {
+                joints: count(6)?,
+                type_correct: count(7)?,
+                axis_errors: floats(8)?,
+                pivot_distances: floats(9)?,
+            },
+        };
+        match pairs.last_mut() {
+            Some(last) if last.pair == pair && pass == last.passes.len() + 1 => {
+                last.passes.push(score)
+            }
+            _ if pass == 1 => pairs.push(PairPasses { pair: pair.to_owned(), passes: vec![score] }),
+            _ => return Err(bad(at(&format!("pass {pass} of pair {pair} is out of order")))),
+        }
+    }
+    Ok(pairs)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use pairs::segments::complete_prediction;
+    use pairs::synthetic::hinge_pair;
+
+    #[test]
+    fn the_true_answer_scores_perfectly_and_the_file_reads_back_exactly() {
+        let pair = hinge_pair("h", 8, 0.7);
+        let (input, truth) = (pair.input(), pair.truth());
+        let right = complete_prediction(input, &truth.flow, &truth.part_p, true);
+        let one_part =
+            complete_prediction(input, &truth.flow, &vec![0u8; truth.part_p.len()], true);
+        let scores = score_passes(&pair, &[one_part, right]).expect("scored");
+        assert_eq!(scores.len(), 2);
+        assert_eq!((scores[1].epe, scores[1].rand_index), (0.0, 1.0));
+        assert_eq!((scores[1].iou_sum, scores[1].parts), (2.0, 2));
+        assert!(scores[0].rand_index < 1.0 && scores[0].iou_sum < 2.0);
+        assert_eq!((scores[1].joints.joints, scores[1].joints.type_correct), (1, 1));
+        let dir = tempfile::tempdir().expect("a temporary folder");
+        let path = passes_path(&dir.path().join("net-iter.csv"));
+        assert!(path.ends_with("net-iter.passes.csv"));
+        let mut third = scores[0].clone();
+        third.epe = 0.1 + 0.2; // not exactly representable in a short decimal
+        let written = vec![
+            PairPasses { pair: "a".into(), passes: scores.clone() },
+            PairPasses { pair: "b".into(), passes: vec![third] },
+        ];
+        write_passes(&path, &written).expect("written");
+        assert_eq!(read_passes(&path).expect("read"), written);
+    }
+
+    #[test]
+    fn a_malformed_file_names_the_line() {
+        let dir = tempfile::tempdir().expect("a temporary folder");
+        let path = dir.path().join("x.passes.csv");
+        let head = HEADER.join(",");
+        std::fs::write(
+            &path,
+            format!("{head}\na,1,0.1,0.9,1.0,1,0,0,,\na,3,0.1,0.9,1.0,1,0,0,,\n"),
+        )
+        .expect("written");
+        let err = read_passes(&path).expect_err("pass 3 after pass 1").to_string();
+        assert!(err.contains("line 3") && err.contains("out of order"), "{err}");
+        std::fs::write(&path, format!("{head}\na,1,x,0.9,1.0,1,0,0,,\n")).expect("written");
+        let err = read_passes(&path).expect_err("not a number").to_string();
+        assert!(err.contains("line 2") && err.contains("epe"), "{err}");
+        std::fs::write(&path, "pair,pass\n").expect("written");
+        assert!(read_passes(&path).is_err(), "another header");
+    }
+}
