@@ -131,7 +131,8 @@ fn stl(name: &str, vertices: &[Point3], triangles: &[[u32; 3]]) -> anyhow::Resul
     let mut text = format!("solid {name}\n");
     for t in triangles {
         let [a, b, c] = t.map(|i| vertices[i as usize]);
-        let n = (b - a).cross(&(c - a)).normalize();
+        // A degenerate triangle gets the zero normal, which STL readers recompute.
+        let n = pairs::math::unit_or(&(b - a).cross(&(c - a)), pairs::math::Vector3::zeros());
         writeln!(text, "facet normal {} {} {}\n outer loop", n.x, n.y, n.z)?;
         for v in [a, b, c] {
             writeln!(text, "  vertex {} {} {}", v.x, v.y, v.z)?;

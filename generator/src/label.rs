@@ -116,9 +116,11 @@ pub fn ground_truth(
             JointTruth {
                 part: parts.of_link[j.child],
                 kind: j.kind,
-                axis_p: (pose_p.rotation * j.axis).normalize(),
+                // Joint axes are unit when built (`Joint::revolute`, `prismatic`), so this
+                // only removes the rotation's rounding; the fallback is never taken.
+                axis_p: pairs::math::unit_or(&(pose_p.rotation * j.axis), j.axis),
                 pivot_p: norm_p.apply(&(pose_p * j.pivot)),
-                axis_q: (pose_q.rotation * j.axis).normalize(),
+                axis_q: pairs::math::unit_or(&(pose_q.rotation * j.axis), j.axis),
                 pivot_q: norm_q.apply(&(pose_q * j.pivot)),
                 value_p: p.values[index],
                 value_q: q.values[index],

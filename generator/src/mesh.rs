@@ -48,8 +48,17 @@ impl Mesh {
         // A right-handed frame (side, up, axis): side = up x axis, up = axis x side.
         let side = up.cross(&axis);
         let up = axis.cross(&side);
-        let frame =
-            nalgebra::Matrix3::from_columns(&[side.normalize(), up.normalize(), axis.normalize()]);
+        let [side, up, along] = match [side, up, axis].map(|v| pairs::math::try_unit(&v)) {
+            [Some(side), Some(up), Some(along)] => [side, up, along],
+            // A zero-length beam, or `up` along the axis: any right-handed frame about the
+            // axis (about z for a zero-length beam, which is drawn as a flat box).
+            _ => {
+                let along = pairs::math::unit_or(&axis, Vector3::z());
+                let side = pairs::math::perpendicular(&along);
+                [side, along.cross(&side), along]
+            }
+        };
+        let frame = nalgebra::Matrix3::from_columns(&[side, up, along]);
         let rotation = UnitQuaternion::from_rotation_matrix(
             &nalgebra::Rotation3::from_matrix_unchecked(frame),
         );
@@ -217,6 +226,11 @@ mod tests {
         let exact = 2.0 * (0.1 * 0.2) + 2.0 * 2f32.sqrt() * (0.1 + 0.2);
         assert!((beam.area() - exact).abs() < 1e-4, "{}", beam.area());
         assert!((z_range(&beam).1 - 0.1).abs() < 1e-5);
+        // `up` along the axis has no frame of its own: the beam is still whole and finite.
+        let upright = Mesh::beam(a, Point3::new(0.0, 0.0, 2.0), 0.1, 0.2, Vector3::z());
+        assert!(upright.vertices.iter().all(|v| v.coords.iter().all(|c| c.is_finite())));
+        assert!((upright.area() - (2.0 * 0.1 * 0.2 + 2.0 * 2.0 * 0.3)).abs() < 1e-4);
+        assert_eq!(z_range(&upright), (0.0, 2.0));
     }
 
     #[test]

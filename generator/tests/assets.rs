@@ -133,7 +133,8 @@ fn urdf_forward_kinematics_matches_hand_computed_link_poses() {
     assert_eq!(names, ["base", "l1", "l2", "l3"]);
     let (q1, q2, q3) = (0.7, -0.3, 2.5);
     // Link frames in the URDF's convention: parent frame * origin * joint motion.
-    let unit = |v: [f64; 3]| Unit::new_normalize(Vector3::from(v));
+    let unit =
+        |v: [f64; 3]| Unit::try_new(Vector3::from(v), 1e-12).expect("the test axes are not zero");
     let turn = |axis: [f64; 3], q: f64| frame([0.0; 3], Rotation3::from_axis_angle(&unit(axis), q));
     let slide =
         |axis: [f64; 3], q: f64| frame((unit(axis).into_inner() * q).into(), Rotation3::identity());

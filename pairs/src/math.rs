@@ -18,3 +18,48 @@ pub type Isometry3 = nalgebra::Isometry3<Real>;
 pub type Translation3 = nalgebra::Translation3<Real>;
 /// A unit-length vector (an axis).
 pub type UnitVector3 = nalgebra::Unit<Vector3>;
+
+/// `v` scaled to unit length, or `fallback` when its norm is zero (or underflows to zero),
+/// where `nalgebra`'s `normalize` would give NaNs (which is why the workspace's
+/// `clippy.toml` bans it). Wherever `normalize` gives no NaN, the result is bit for bit
+/// `normalize`'s: a vector however short keeps its direction, so a cross product of nearly
+/// parallel vectors is not mistaken for a degenerate one.
+///
+/// ```
+/// use pairs::math::{unit_or, Vector3};
+/// assert_eq!(unit_or(&Vector3::new(0.0, 3.0, 4.0), Vector3::x()), Vector3::new(0.0, 0.6, 0.8));
+/// let tiny = unit_or(&Vector3::new(0.0, 3e-10, 4e-10), Vector3::x());
+/// assert!((tiny - Vector3::new(0.0, 0.6, 0.8)).norm() < 1e-6);
+/// assert_eq!(unit_or(&Vector3::zeros(), Vector3::x()), Vector3::x());
+/// ```
+pub fn unit_or(v: &Vector3, fallback: Vector3) -> Vector3 {
+    try_unit(v).unwrap_or(fallback)
+}
+
+/// `v` scaled to unit length, or `None` when its norm is zero (see [`unit_or`]).
+pub fn try_unit(v: &Vector3) -> Option<Vector3> {
+    v.try_normalize(0.0)
+}
+
+/// A unit vector perpendicular to the unit vector `axis` (from the coordinate axis least
+/// aligned with it), for building a frame about an axis that comes without one.
+///
+/// ```
+/// use pairs::math::{perpendicular, Vector3};
+/// for axis in [Vector3::x(), Vector3::y(), Vector3::new(0.6, 0.0, 0.8)] {
+///     let p = perpendicular(&axis);
+///     assert!(p.dot(&axis).abs() < 1e-6 && (p.norm() - 1.0).abs() < 1e-6);
+/// }
+/// ```
+pub fn perpendicular(axis: &Vector3) -> Vector3 {
+    let a = axis.abs();
+    let least = if a.x <= a.y && a.x <= a.z {
+        Vector3::x()
+    } else if a.y <= a.z {
+        Vector3::y()
+    } else {
+        Vector3::z()
+    };
+    // `least` is at most 1/√3 along a unit `axis`, so the cross product has norm ≥ √(2/3).
+    unit_or(&axis.cross(&least), Vector3::x())
+}

@@ -196,7 +196,8 @@ pub fn interpolate_rigid(a: &Isometry3, b: &Isometry3, t: Real) -> Isometry3 {
 
 /// A rotation about a unit axis through a pivot, as an isometry.
 pub fn rotation_about(pivot: &Point3, axis: &Vector3, angle: Real) -> Isometry3 {
-    let rot = Rotation3::new(axis.normalize() * angle);
+    // A zero axis has no rotation about it: the identity.
+    let rot = Rotation3::new(crate::math::unit_or(axis, Vector3::zeros()) * angle);
     let translation = pivot.coords - rot * pivot.coords;
     Isometry3::from_parts(translation.into(), rot.into())
 }
@@ -219,7 +220,7 @@ mod tests {
             t in arb_point(),
             scale in 0.5f32..2.0,
         ) {
-            let rot = Rotation3::new(Vector3::new(axis.0, axis.1, axis.2).normalize() * angle);
+            let rot = Rotation3::new(crate::math::unit_or(&Vector3::new(axis.0, axis.1, axis.2), Vector3::z()) * angle);
             let truth = Similarity { rotation: rot.into_inner(), translation: t.coords, scale };
             let dst: Vec<_> = pts.iter().map(|p| truth.apply(p)).collect();
             let w = vec![1.0; pts.len()];

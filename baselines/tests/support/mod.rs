@@ -77,9 +77,9 @@ pub fn two_part_pair(
     let joint = JointTruth {
         part: 1,
         kind: JointKind::Revolute,
-        axis_p: axis.normalize(),
+        axis_p: pairs::math::unit_or(&axis, Vector3::z()),
         pivot_p: p.normalisation.apply(&pivot),
-        axis_q: axis.normalize(),
+        axis_q: pairs::math::unit_or(&axis, Vector3::z()),
         pivot_q: q.normalisation.apply(&pivot),
         value_p: 0.0,
         value_q: angle,

@@ -28,7 +28,8 @@ fn rim(centre: Point3, half: (Real, Real), exponent: Real, width: Real, depth: R
         let ([ax, ay], [bx, by]) = (line[i], line[(i + 1) % line.len()]);
         let (a, b) = (centre + Vector3::new(ax, ay, 0.0), centre + Vector3::new(bx, by, 0.0));
         // Overlapping the next box closes the rim's outer corners.
-        let run = (b - a).normalize() * 0.5 * width;
+        // A repeated rim point (none is) extends along x.
+        let run = pairs::math::unit_or(&(b - a), Vector3::x()) * 0.5 * width;
         Mesh::beam(a - run, b + run, width, depth, Vector3::z())
     }))
 }

@@ -96,7 +96,8 @@ fn build(rng: &mut Rng) -> ArticulatedObject {
         Mesh::beam(at(brace, -outer - tube), at(brace, outer + tube), 0.02, 0.02, Vector3::y()),
     ]);
     // Folded, the back legs stop short of the front legs so their brace clears them.
-    let down_front = (on_frame(0.0) - knee).normalize();
+    // The frame's foot never sits on the knee; if it did, the legs would point straight down.
+    let down_front = pairs::math::unit_or(&(on_frame(0.0) - knee), -Vector3::y());
     let spread = down_front.angle(&(foot - knee)) - 8f32.to_radians();
     let folding_legs = if legs_fold {
         Some(legs)

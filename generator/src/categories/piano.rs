@@ -127,7 +127,8 @@ fn grand_case(rng: &mut Rng, half_w: Real) -> (Mesh, Mesh, Joint) {
     for (i, &(x0, z0)) in outline.iter().enumerate() {
         let (x1, z1) = outline[(i + 1) % outline.len()];
         let (p, q) = (Point3::new(x0, 0.0, z0), Point3::new(x1, 0.0, z1));
-        let inward = (Vector3::y().cross(&(q - p))).normalize();
+        // A repeated outline point (none is) has no edge normal: x, flipped inward below.
+        let inward = pairs::math::unit_or(&Vector3::y().cross(&(q - p)), Vector3::x());
         let inward = if inward.dot(&(centre - p)) < 0.0 { -inward } else { inward };
         let lift = Vector3::y() * (top - 0.5 * inset) + inward * 0.5 * rim;
         case.append(Mesh::beam(p + lift, q + lift, rim, inset, Vector3::y()));

@@ -55,7 +55,8 @@ impl Section {
     /// stick, clasping one neighbour and clasped by the next.
     pub fn fork_to_bar(&self, a: Point3, b: Point3) -> Mesh {
         let mid = a + (b - a) * 0.35;
-        let back = mid - (b - a).normalize() * (0.5 * self.depth);
+        // A zero-length link bridges back along x.
+        let back = mid - pairs::math::unit_or(&(b - a), Vector3::x()) * (0.5 * self.depth);
         let bridge = Mesh::beam(back, mid, 0.9 * self.depth, 2.0 * self.outer(), Vector3::x());
         Mesh::union([self.fork(a, mid), bridge, self.bar(mid, b)])
     }

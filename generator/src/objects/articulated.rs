@@ -113,7 +113,9 @@ impl Joint {
             parent: 0,
             child: 0,
             pivot,
-            axis: axis.normalize(),
+            // A zero axis is a category's mistake; z keeps it from filling a dataset with
+            // NaNs (the object checks then see a joint that turns about z).
+            axis: pairs::math::unit_or(&axis, Vector3::z()),
             limits,
             rest: 0.0,
         }

@@ -24,8 +24,9 @@ pub fn bracket_hinge(
     mount: Vector3,
     max_angle: Real,
 ) -> (Mesh, Mesh, Joint) {
-    let axis = axis.normalize();
-    let up = mount.normalize();
+    // Zero vectors (no category passes one) fall back to a z axis mounted along y.
+    let axis = pairs::math::unit_or(&axis, Vector3::z());
+    let up = pairs::math::unit_or(&mount, Vector3::y());
     let below = pivot - up * 1.3 * r;
     let mut bracket: Vec<Mesh> = [-1.0, 1.0]
         .iter()

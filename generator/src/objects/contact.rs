@@ -13,7 +13,8 @@ use crate::mesh::Mesh;
 /// (GJK) between thin, centrally symmetric pieces stays within their thickness of the truth,
 /// where between thick flush faces it can be off by half their thickness.
 pub fn contact_pads(pivot: Point3, axis: Vector3, radius: Real) -> (Mesh, Mesh) {
-    let step = axis.normalize() * pad_thickness(radius);
+    // A zero axis (no joint builds one) stacks the pads along z.
+    let step = pairs::math::unit_or(&axis, Vector3::z()) * pad_thickness(radius);
     (
         Mesh::cylinder(pivot - step, pivot, radius, 12),
         Mesh::cylinder(pivot, pivot + step, radius, 12),

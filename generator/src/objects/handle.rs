@@ -7,7 +7,8 @@ use crate::mesh::Mesh;
 /// A bar handle from `a` to `b`, standing off the surface along `out` by `standoff`: a bar
 /// plus two posts.
 pub fn bar_handle(a: Point3, b: Point3, out: Vector3, standoff: Real, radius: Real) -> Mesh {
-    let lift = out.normalize() * standoff;
+    // No direction out: the handle stands off along z.
+    let lift = pairs::math::unit_or(&out, Vector3::z()) * standoff;
     Mesh::union([
         Mesh::cylinder(a + lift, b + lift, radius, 8),
         Mesh::cylinder(a, a + lift, radius * 0.8, 6),

@@ -20,14 +20,16 @@ pub struct Camera {
 impl Camera {
     /// A camera at `eye` looking at `target`, with image up along the object's +y.
     pub fn look_at(intrinsics: Intrinsics, eye: &Point3, target: &Point3) -> Self {
-        let forward = (target - eye).normalize();
+        // An eye on the target looks along +z.
+        let forward = pairs::math::unit_or(&(target - eye), Vector3::z());
         // Image down is world down made perpendicular to the viewing direction; looking
         // straight up or down, the object's -z stands in.
         let mut down = -Vector3::y() + forward * forward.y;
         if down.norm() < 1e-3 {
             down = -Vector3::z() + forward * forward.z;
         }
-        let down = down.normalize();
+        // At least 1e-3 long after the fallback above, so `unit_or` never falls back here.
+        let down = pairs::math::unit_or(&down, -Vector3::z());
         let right = down.cross(&forward);
         let rotation =
             Rotation3::from_matrix_unchecked(Matrix3::from_columns(&[right, down, forward]));

@@ -239,7 +239,7 @@ mod tests {
         assert!((true_state_change(&t, 2.0) - 0.2).abs() < 1e-6);
         let e = JointEstimate {
             kind: JointKind::Prismatic,
-            axis: Vector3::new(1.0, 1.0, 0.0).normalize(),
+            axis: Vector3::new(1.0, 1.0, 0.0) / 2f32.sqrt(),
             pivot: Point3::new(3.0, 3.0, 3.0),
             value: 0.25,
         };
