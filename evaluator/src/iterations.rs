@@ -90,6 +90,30 @@ pub fn iteration_table(dataset: &str, scored: &[PairPasses]) -> (Vec<IterationRo
     (rows, joint_rows)
 }
 
+/// The iteration board as text, one line per dataset and iteration, then per dataset the
+/// joints of the first and last passes (what `evaluator` prints at the end).
+pub fn summary_lines(rows: &[IterationRow], joint_rows: &[JointRow]) -> Vec<String> {
+    let iterations = rows.iter().map(|r| {
+        format!(
+            "{} iteration {:2}: EPE {:.4} RI {:.4} IoU {:.4} ({} of {} pairs still running)",
+            r.dataset, r.iteration, r.epe, r.rand_index, r.iou, r.running, r.pairs
+        )
+    });
+    let joints = joint_rows.iter().map(|r| {
+        let s = &r.scores;
+        format!(
+            "{} {} joints: {} of {} typed right, median axis error {:.1}°, median pivot distance {:.3}",
+            r.dataset,
+            r.method,
+            s.type_correct,
+            s.joints,
+            median(&s.axis_errors),
+            median(&s.pivot_distances)
+        )
+    });
+    iterations.chain(joints).collect()
+}
+
 /// Writes `iterations.csv`, the plot and `iterations_joints.csv` into `dir`; returns the files written.
 pub fn write_iterations(
     dir: &Path,

@@ -6,7 +6,12 @@
 //! (`pairs::metrics`) and caching per-pair results ([`record`]). [`leaderboard`] aggregates
 //! them with polars into the CSV leaderboards; [`plots`], [`gallery`] and [`report`] draw the
 //! PCC curves and segmentation pictures and write `LEADERBOARD.md` beside the paper's
-//! numbers ([`paper`]).
+//! numbers ([`paper`]). An iterative row (`net-iter`) also scores each of its passes as it
+//! runs ([`passes`], cached beside its runs file), and [`iterations`] writes the paper's
+//! Table 4 from them; [`joints`] holds the joint scores of its first and last passes.
+//! [`tuning`] cross-validates the baselines' parameters on the validation sets,
+//! [`external`] and [`commands`] score and write prediction files of methods run elsewhere,
+//! [`standard`] is the default registry and [`pipeline`] the whole evaluation.
 //!
 //! ```
 //! use std::sync::Arc;

@@ -13,8 +13,7 @@ use evaluator::datasets::{
     default_datasets, parse_user_dataset, remember_datasets, remembered_datasets,
     validation_datasets, DatasetSpec,
 };
-use evaluator::joints;
-use evaluator::pipeline::{evaluate, Options, Progress, Summary};
+use evaluator::pipeline::{evaluate, Options, Progress};
 use evaluator::standard::{standard_registry, DEFAULT_WEIGHTS};
 use indicatif::{ProgressBar, ProgressStyle};
 
@@ -357,31 +356,11 @@ fn run(args: Args) -> Result<()> {
         started.elapsed().as_secs_f64(),
         summary.reports.display()
     );
-    print_iterations(&summary);
+    for line in evaluator::iterations::summary_lines(&summary.iterations, &summary.iteration_joints)
+    {
+        eprintln!("{line}");
+    }
     Ok(())
-}
-
-/// The iteration board's rows (net-iter after every pass, the paper's Table 4), when any
-/// dataset has net-iter's run.
-fn print_iterations(summary: &Summary) {
-    for row in &summary.iterations {
-        eprintln!(
-            "{} iteration {:2}: EPE {:.4} RI {:.4} IoU {:.4} ({} of {} pairs still running)",
-            row.dataset, row.iteration, row.epe, row.rand_index, row.iou, row.running, row.pairs
-        );
-    }
-    for row in &summary.iteration_joints {
-        let s = &row.scores;
-        eprintln!(
-            "{} {} joints: {} of {} typed right, median axis error {:.1}°, median pivot distance {:.3}",
-            row.dataset,
-            row.method,
-            s.type_correct,
-            s.joints,
-            joints::median(&s.axis_errors),
-            joints::median(&s.pivot_distances)
-        );
-    }
 }
 
 /// jemalloc keeps freed large blocks for reuse (see the workspace's Cargo.toml).

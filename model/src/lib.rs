@@ -1,15 +1,27 @@
 //! The network of Yi et al. 2018, "Deep Part Induction from Articulated Object Pairs", in
 //! burn (the flex CPU backend by default; GPU backends are opt-in features).
 //!
-//! This first layer holds the PointNet++ building blocks every module of the paper is made
-//! of: [`sampling`] computes farthest-point samples, ball neighbourhoods and 3-NN weights as
-//! plain indices (no gradient), and [`pointnet`] turns them into differentiable layers
-//! ([`pointnet::SharedMlp`], [`pointnet::SetAbstraction`], [`pointnet::FeaturePropagation`])
-//! that group features by gather, so gradients flow to every point that was picked.
-//! [`rotation`] projects matrices onto rotations differentiably, for the hypothesis
-//! generator, and [`losses`] holds the paper's training losses as pure tensor functions.
-//! [`norm`] runs a shared-MLP layer's bias, layer norm and ReLU as one operation with its
-//! own backward pass when training on the CPU.
+//! Its modules, by job (the paper's sections in brackets):
+//!
+//! - **The network.** [`sampling`] (farthest-point samples, ball neighbourhoods and 3-NN
+//!   weights as plain indices) and [`pointnet`] (the PointNet++ layers that gather by those
+//!   indices, [`norm`] fusing a layer's bias, layer norm and ReLU when training on the CPU)
+//!   build the [`backbone`]; [`correspondence`] and [`flow`] are the correspondence proposal
+//!   and flow modules (4.1, 4.2), [`hypotheses`], [`support`] and [`rpen`] the
+//!   segmentation module's hypothesis generation, verification and recurrent proposal
+//!   network (4.3), [`rotation`] their differentiable projection onto rotations;
+//!   [`network`] puts them together as `PartNet`, and [`predict`] is its single forward
+//!   pass. [`config`] holds every size.
+//! - **Training** (5). [`batch`] (pairs to tensors, the ground truth on the subsets), [`losses`]
+//!   and [`objective`] (each stage's terms and weights), [`train`] (the stage-wise trainer
+//!   and its data-parallel step), [`validation`] (the fixed validation set and its scores),
+//!   [`checkpoint`], [`log`] and [`plot`] (what a run writes).
+//! - **Inference.** [`inference`] (the iterative procedure, 4.4), [`rotation_search`] (the
+//!   48 initial orientations), [`labels`] (hard labels by graph cut, fragment merging,
+//!   per-segment motions, Q's labels), and [`method`], the network as the evaluator's
+//!   method and segmenter.
+//! - **Applications and files.** [`apps`] (what `model infer` and `model animate` do),
+//!   [`pointfile`] (a user's PLY and OBJ files) and [`animation`] (the animated glTF).
 //!
 //! ```
 //! use burn::prelude::*;

@@ -131,7 +131,8 @@ impl PartNet {
     /// The raw network's single pass, as the trainer validates it: [`Self::flow_pass`],
     /// [`Self::soft_segments`], labels by argmax, one motion per segment and Q labelled
     /// by its nearest moved point (`pairs::segments`). No calibration and no graph cut: the
-    /// evaluator's `net` row is [`PartNet::infer`] with [`InferenceParams::single_pass`].
+    /// evaluator's `net` row is [`PartNet::infer`] with
+    /// [`InferenceParams::single_pass`](crate::inference::InferenceParams::single_pass).
     pub fn predict(&self, input: &PairInput) -> Result<Prediction, SamplingError> {
         let (flow, mask) = self.flow_pass(input)?;
         let mut prediction = self.segment_flow(input, &flow)?;

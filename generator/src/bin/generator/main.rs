@@ -7,14 +7,16 @@ use clap::{Parser, Subcommand};
 use generator::asset_dataset::{generate_asset_dataset, load_assets, relative};
 use generator::categories::{Split, CATEGORIES};
 use generator::config::GeneratorConfig;
-use generator::export::formats::{export_dataset, Format};
-use generator::export::objects::{built_in_objects, export_objects, ObjectToExport, Source};
+use generator::export::formats::Format;
 use generator::gallery::write_gallery;
 use generator::generate::generate_dataset;
-use generator::shard::{merge_shards, parse_shard};
-use indicatif::{ProgressBar, ProgressStyle};
-use pairs::dataset::{Manifest, Shard};
+use generator::shard::parse_shard;
+use pairs::dataset::Shard;
 use pairs::PairKind;
+
+mod commands;
+
+use commands::{export_command, export_objects_command, merge, progress_bar, report};
 
 /// Generate a dataset of articulated shape pairs (P, Q) with ground-truth parts, motions,
 /// flow, correspondences and joints, following the test protocol of Yi et al. 2018.
@@ -379,80 +381,6 @@ fn set_threads(threads: Option<usize>) -> Result<()> {
     Ok(())
 }
 
-/// `generator export-objects`.
-fn export_objects_command(selection: &Selection, out: &std::path::Path, force: bool) -> Result<()> {
-    let config = selection.config()?;
-    config.validate().context("checking the config")?;
-    let started = std::time::Instant::now();
-    let objects = match &selection.assets {
-        Some(root) => {
-            let sources = load_assets(root, &config)
-                .with_context(|| format!("looking for assets in {}", root.display()))?;
-            let mut objects = Vec::with_capacity(sources.len());
-            let mut failed = 0;
-            for (i, source) in sources.into_iter().enumerate() {
-                let path = relative(root, &source.path);
-                match source.loaded {
-                    Ok(imported) => objects.push(ObjectToExport {
-                        object_id: i as u32,
-                        object: imported.object,
-                        source: Source::Asset { path },
-                    }),
-                    Err(e) => {
-                        failed += 1;
-                        eprintln!("  {path}: {e}");
-                    }
-                }
-            }
-            if objects.is_empty() {
-                bail!("no asset in {} could be read", root.display());
-            }
-            if failed > 0 {
-                eprintln!("{failed} assets could not be read and are not exported");
-            }
-            objects
-        }
-        None => built_in_objects(&config).context("building the objects")?,
-    };
-    let bar = progress_bar(objects.len() as u64, "objects");
-    bar.set_message(format!("exporting {}", out.display()));
-    let written = export_objects(&config, &objects, out, force, |n| bar.set_position(n))
-        .with_context(|| format!("exporting objects to {}", out.display()))?;
-    bar.finish_and_clear();
-    println!(
-        "wrote {} objects to {} in {:.2} s",
-        written.len(),
-        out.display(),
-        started.elapsed().as_secs_f64()
-    );
-    Ok(())
-}
-
-/// `generator export`.
-fn export_command(
-    format: Format,
-    dataset: &std::path::Path,
-    out: &std::path::Path,
-    force: bool,
-) -> Result<()> {
-    let started = std::time::Instant::now();
-    let bar = progress_bar(0, "pairs");
-    bar.set_message(format!("exporting {} as {}", dataset.display(), format.as_str()));
-    let summary = export_dataset(format, dataset, out, force, |n| bar.set_position(n))
-        .with_context(|| format!("exporting {} to {}", dataset.display(), out.display()))?;
-    bar.finish_and_clear();
-    println!(
-        "wrote {} pairs as {} ({} files, {:.1} MiB) to {} in {:.2} s",
-        summary.pairs,
-        format.as_str(),
-        summary.files,
-        summary.bytes as f64 / (1 << 20) as f64,
-        out.display(),
-        started.elapsed().as_secs_f64()
-    );
-    Ok(())
-}
-
 /// Where a dataset goes unless --out says otherwise.
 fn default_out(config: &GeneratorConfig) -> PathBuf {
     let kind = config.kind.as_str().to_lowercase();
@@ -460,45 +388,4 @@ fn default_out(config: &GeneratorConfig) -> PathBuf {
         Split::Test => PathBuf::from("datasets").join(kind),
         split => PathBuf::from("datasets").join(format!("{kind}-{split}")),
     }
-}
-
-/// `generator merge`.
-fn merge(shards: &[PathBuf], out: &std::path::Path, force: bool) -> Result<()> {
-    if !force && out.join(pairs::dataset::MANIFEST_FILE).exists() {
-        bail!("{} already holds a dataset; pass --force to replace it", out.display());
-    }
-    let bar = progress_bar(0, "pairs");
-    bar.set_message(format!("merging into {}", out.display()));
-    let started = std::time::Instant::now();
-    let manifest = merge_shards(shards, out, force, |n| bar.set_position(n))
-        .with_context(|| format!("merging {} shards into {}", shards.len(), out.display()))?;
-    bar.finish_and_clear();
-    report(&manifest, out, started);
-    Ok(())
-}
-
-/// A progress bar counting `unit`.
-fn progress_bar(len: u64, unit: &str) -> ProgressBar {
-    let template =
-        format!("{{msg}} [{{elapsed_precise}}] {{wide_bar}} {{pos}}/{{len}} {unit} ({{eta}})");
-    ProgressBar::new(len)
-        .with_style(ProgressStyle::with_template(&template).expect("the template is valid"))
-}
-
-/// Prints what was written.
-fn report(manifest: &Manifest, out: &std::path::Path, started: std::time::Instant) {
-    let bytes: u64 = manifest.files.values().map(|f| f.bytes).sum();
-    let shard = manifest
-        .origin
-        .shard
-        .map(|s| format!(" (shard {}/{})", s.index, s.count))
-        .unwrap_or_default();
-    println!(
-        "wrote {} pairs of {} objects{shard} to {} ({:.1} MiB) in {:.2} s",
-        manifest.counts.pairs,
-        manifest.counts.objects,
-        out.display(),
-        bytes as f64 / (1 << 20) as f64,
-        started.elapsed().as_secs_f64()
-    );
 }
