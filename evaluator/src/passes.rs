@@ -12,6 +12,7 @@ use pairs::{Pair, Prediction};
 
 use crate::error::EvalError;
 use crate::joints::JointScores;
+use crate::record::num;
 use pairs::atomic::replace_file;
 
 /// The scores of one pass on one pair.
@@ -79,11 +80,6 @@ const HEADER: [&str; 10] = [
     "axis_errors",
     "pivot_distances",
 ];
-
-/// A number as the shortest text that parses back to the same `f64`.
-fn num(v: f64) -> String {
-    format!("{v:?}")
-}
 
 /// A list of numbers, `;`-separated.
 fn list(values: &[f64]) -> String {

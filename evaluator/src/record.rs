@@ -71,7 +71,8 @@ pub fn pcc_column(k: usize) -> String {
     format!("pcc_{:03}", (k as f64 * PCC_STEP * 1000.0).round() as u32)
 }
 
-fn num(v: f64) -> String {
+/// A number as the shortest text that parses back to the same `f64` (the runs cache's cells).
+pub(crate) fn num(v: f64) -> String {
     // Round-trip exact (shortest representation that parses back to the same f64).
     format!("{v:?}")
 }
