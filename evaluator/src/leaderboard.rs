@@ -13,7 +13,7 @@ use pairs::metrics::{PCC_STEP, PCC_THRESHOLDS};
 use polars::prelude::*;
 
 use crate::error::EvalError;
-use crate::record::{pcc_column, RunTable};
+use crate::record::{pcc_column, RunRow};
 use crate::registry::{Board, Entry};
 use crate::run::RunResult;
 use pairs::atomic::replace_file;
@@ -59,92 +59,75 @@ fn table_err(what: &str) -> impl Fn(PolarsError) -> EvalError + '_ {
     move |source| EvalError::Table { what: what.to_owned(), source }
 }
 
-/// Per-pair cells of `table` in column `name` as numbers (empty cells are missing).
-fn numbers(table: &RunTable, name: &str) -> Vec<Option<f64>> {
-    let i = table.header.iter().position(|h| h == name);
-    table.rows.iter().map(|r| i.and_then(|i| r[i].parse().ok())).collect()
-}
-
 /// Key columns of the per-pair frame: the row's and the pair's.
 const KEYS: [&str; 6] = ["dataset", "method", "flow_source", "oracle", "category", "joint_types"];
 
 /// The keys a row is identified by on the boards.
 const ROW_KEYS: [&str; 4] = ["dataset", "method", "flow_source", "oracle"];
 
-/// Numeric per-pair columns summed by the leaderboards.
-const SUMMED: [&str; 24] = [
-    "epe",
-    "ri",
-    "iou_sum",
-    "parts",
-    "ri_q",
-    "iou_q_sum",
-    "parts_q",
-    "matched",
-    "rotation_sum",
-    "translation_sum",
-    "has_flow",
-    "failed",
-    "scored",
-    "parts_right",
-    "joints",
-    "joints_typed",
-    "axis_sum",
-    "axis_n",
-    "line_sum",
-    "line_n",
-    "state_rev_sum",
-    "state_rev_n",
-    "state_pri_sum",
-    "state_pri_n",
+/// A per-pair number of a [`RunRow`] (`None` where the row has none).
+type Field = fn(&RunRow) -> Option<f64>;
+
+fn count(n: Option<u32>) -> Option<f64> {
+    n.map(f64::from)
+}
+
+fn flag(b: bool) -> Option<f64> {
+    Some(f64::from(u8::from(b)))
+}
+
+/// Numeric per-pair columns summed by the leaderboards, each from its [`RunRow`] field.
+const SUMMED: [(&str, Field); 25] = [
+    ("epe", |r| r.epe),
+    ("ri", |r| r.ri),
+    ("iou_sum", |r| r.iou_sum),
+    ("parts", |r| count(r.parts)),
+    ("ri_q", |r| r.ri_q),
+    ("iou_q_sum", |r| r.iou_q_sum),
+    ("parts_q", |r| count(r.parts_q)),
+    ("matched", |r| count(r.matched)),
+    ("rotation_sum", |r| r.rotation_sum),
+    ("translation_sum", |r| r.translation_sum),
+    ("has_flow", |r| r.has_flow.map(f64::from)),
+    ("failed", |r| flag(!r.scored())),
+    ("scored", |r| flag(r.scored())),
+    ("parts_right", |r| r.parts.zip(r.segments).and_then(|(p, s)| flag(p == s))),
+    ("joints", |r| count(r.joints)),
+    ("joints_typed", |r| count(r.joints_typed)),
+    ("axis_sum", |r| r.axis_sum),
+    ("axis_n", |r| count(r.axis_n)),
+    ("line_sum", |r| r.line_sum),
+    ("line_n", |r| count(r.line_n)),
+    ("state_rev_sum", |r| r.state_rev_sum),
+    ("state_rev_n", |r| count(r.state_rev_n)),
+    ("state_pri_sum", |r| r.state_pri_sum),
+    ("state_pri_n", |r| count(r.state_pri_n)),
+    ("has_q", |r| r.ri_q.and(Some(1.0))),
 ];
 
 /// The per-pair frame of the runs that `keep` selects.
 fn pairs_frame(runs: &[Scored], keep: impl Fn(Board) -> bool) -> Result<DataFrame, EvalError> {
     let runs: Vec<&Scored> = runs.iter().filter(|r| keep(r.entry.board)).collect();
     let mut keys: [Vec<String>; 6] = Default::default();
-    let mut columns: Vec<Vec<Option<f64>>> = vec![Vec::new(); SUMMED.len() + 1 + PCC_THRESHOLDS];
+    let mut columns: Vec<Vec<Option<f64>>> = vec![Vec::new(); SUMMED.len() + PCC_THRESHOLDS];
     for run in runs {
-        let table = &run.result.table;
-        let n = table.rows.len();
+        let rows = &run.result.rows;
+        let n = rows.len();
         keys[0].extend(std::iter::repeat_n(run.dataset.to_owned(), n));
         keys[1].extend(std::iter::repeat_n(run.entry.name.clone(), n));
         keys[2].extend(std::iter::repeat_n(run.entry.flow_source(), n));
         keys[3].extend(std::iter::repeat_n(run.entry.oracle.to_string(), n));
-        let cell = |name: &str| table.header.iter().position(|h| h == name);
-        let (category, joint_types) = (cell("category"), cell("joint_types"));
-        for r in &table.rows {
-            keys[4].push(category.map(|i| r[i].clone()).unwrap_or_default());
-            keys[5].push(joint_types.map(|i| r[i].clone()).unwrap_or_default());
+        keys[4].extend(rows.iter().map(|r| r.category.clone()));
+        keys[5].extend(rows.iter().map(|r| r.joint_types.clone()));
+        for (column, (_, field)) in columns.iter_mut().zip(SUMMED) {
+            column.extend(rows.iter().map(field));
         }
-        let failed: Vec<bool> = table.rows.iter().map(|r| !r[2].is_empty()).collect();
-        let parts = numbers(table, "parts");
-        let segments = numbers(table, "segments");
-        let has_q: Vec<Option<f64>> =
-            numbers(table, "ri_q").iter().map(|v| v.map(|_| 1.0)).collect();
-        for (c, name) in SUMMED.iter().enumerate() {
-            let values = match *name {
-                "failed" => failed.iter().map(|&f| Some(f64::from(u8::from(f)))).collect(),
-                "scored" => failed.iter().map(|&f| Some(f64::from(u8::from(!f)))).collect(),
-                "parts_right" => parts
-                    .iter()
-                    .zip(&segments)
-                    .map(|(p, s)| p.zip(*s).map(|(p, s)| f64::from(u8::from(p == s))))
-                    .collect(),
-                other => numbers(table, other),
-            };
-            columns[c].extend(values);
-        }
-        columns[SUMMED.len()].extend(has_q.iter().copied());
         for k in 0..PCC_THRESHOLDS {
-            columns[SUMMED.len() + 1 + k].extend(numbers(table, &pcc_column(k)));
+            columns[SUMMED.len() + k].extend(rows.iter().map(|r| r.pcc.get(k).copied().flatten()));
         }
     }
-    let names = SUMMED
-        .iter()
-        .map(|s| s.to_string())
-        .chain(["has_q".to_string()])
-        .chain((0..PCC_THRESHOLDS).map(pcc_column));
+    let names =
+        SUMMED.iter().map(|(name, _)| name.to_string()).chain((0..PCC_THRESHOLDS).map(pcc_column));
     let mut frame: Vec<Column> =
         KEYS.iter().zip(keys).map(|(name, values)| Column::new((*name).into(), values)).collect();
     frame.extend(names.zip(columns).map(|(name, values)| Column::new(name.into(), values)));
@@ -304,7 +287,7 @@ fn timings(runs: &[Scored]) -> Result<DataFrame, EvalError> {
     for run in runs {
         cols[0].push(run.dataset.to_owned());
         cols[1].push(run.entry.name.clone());
-        let times: Vec<f64> = numbers(&run.result.table, "ms").into_iter().flatten().collect();
+        let times: Vec<f64> = run.result.rows.iter().map(|r| r.ms).collect();
         ms.push((!times.is_empty()).then(|| times.iter().sum::<f64>() / times.len() as f64));
         peak.push(run.result.meta.peak_mib);
     }

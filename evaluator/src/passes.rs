@@ -9,10 +9,11 @@ use std::path::{Path, PathBuf};
 
 use pairs::metrics::{epe, matched_iou, rand_index};
 use pairs::{Pair, Prediction};
+use serde::{Deserialize, Serialize};
 
 use crate::error::EvalError;
 use crate::joints::JointScores;
-use crate::record::num;
+use crate::record::cell_error;
 use pairs::atomic::replace_file;
 
 /// The scores of one pass on one pair.
@@ -68,6 +69,25 @@ pub fn passes_path(runs_file: &Path) -> PathBuf {
     runs_file.with_extension("passes.csv")
 }
 
+/// One line of a passes file: one pass of one pair (serde; lists `;`-separated).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+struct PassRow {
+    pair: String,
+    /// 1 for the first pass.
+    pass: usize,
+    epe: f64,
+    ri: f64,
+    iou_sum: f64,
+    parts: usize,
+    joints: usize,
+    type_correct: usize,
+    #[serde(with = "semicolons")]
+    axis_errors: Vec<f64>,
+    #[serde(with = "semicolons")]
+    pivot_distances: Vec<f64>,
+}
+
+/// The columns of a passes file, [`PassRow`]'s fields.
 const HEADER: [&str; 10] = [
     "pair",
     "pass",
@@ -81,35 +101,50 @@ const HEADER: [&str; 10] = [
     "pivot_distances",
 ];
 
-/// A list of numbers, `;`-separated.
-fn list(values: &[f64]) -> String {
-    values.iter().map(|&v| num(v)).collect::<Vec<_>>().join(";")
+/// A list of numbers as one cell, `;`-separated, each round-trip exact.
+mod semicolons {
+    use serde::{de::Error, Deserialize, Deserializer, Serializer};
+
+    pub fn serialize<S: Serializer>(values: &[f64], s: S) -> Result<S::Ok, S::Error> {
+        let cells: Vec<String> = values.iter().map(|&v| crate::record::num(v)).collect();
+        s.serialize_str(&cells.join(";"))
+    }
+
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<f64>, D::Error> {
+        let cell = String::deserialize(d)?;
+        if cell.is_empty() {
+            return Ok(Vec::new());
+        }
+        cell.split(';')
+            .map(|v| v.parse().map_err(|_| D::Error::custom(format!("{v:?} is not a number"))))
+            .collect()
+    }
 }
 
 /// Writes `pairs`' passes to `path`, replacing an old file only once the new one is complete.
 pub fn write_passes(path: &Path, pairs: &[PairPasses]) -> Result<(), EvalError> {
+    let bad = |e: csv::Error| EvalError::Csv { path: path.to_path_buf(), message: e.to_string() };
     replace_file(path, |out| {
-        let bad =
-            |e: csv::Error| EvalError::Csv { path: path.to_path_buf(), message: e.to_string() };
         let mut writer = csv::Writer::from_writer(out);
-        writer.write_record(HEADER).map_err(bad)?;
         for p in pairs {
             for (k, s) in p.passes.iter().enumerate() {
-                writer
-                    .write_record([
-                        p.pair.clone(),
-                        (k + 1).to_string(),
-                        num(s.epe),
-                        num(s.rand_index),
-                        num(s.iou_sum),
-                        s.parts.to_string(),
-                        s.joints.joints.to_string(),
-                        s.joints.type_correct.to_string(),
-                        list(&s.joints.axis_errors),
-                        list(&s.joints.pivot_distances),
-                    ])
-                    .map_err(bad)?;
+                let row = PassRow {
+                    pair: p.pair.clone(),
+                    pass: k + 1,
+                    epe: s.epe,
+                    ri: s.rand_index,
+                    iou_sum: s.iou_sum,
+                    parts: s.parts,
+                    joints: s.joints.joints,
+                    type_correct: s.joints.type_correct,
+                    axis_errors: s.joints.axis_errors.clone(),
+                    pivot_distances: s.joints.pivot_distances.clone(),
+                };
+                writer.serialize(row).map_err(bad)?;
             }
+        }
+        if pairs.iter().all(|p| p.passes.is_empty()) {
+            writer.write_record(HEADER).map_err(bad)?;
         }
         writer.flush().map_err(|source| EvalError::Io { path: path.to_path_buf(), source })
     })
@@ -125,47 +160,28 @@ pub fn read_passes(path: &Path) -> Result<Vec<PairPasses>, EvalError> {
         return Err(bad("the header is not this evaluator's (rerun the row)".into()));
     }
     let mut pairs: Vec<PairPasses> = Vec::new();
-    for (line, record) in reader.records().enumerate() {
-        let record = record.map_err(|e| bad(e.to_string()))?;
-        let at = |what: &str| format!("line {}: {what}", line + 2);
-        let field = |i: usize| record.get(i).ok_or_else(|| bad(at(&format!("no {}", HEADER[i]))));
-        let float = |i: usize| -> Result<f64, EvalError> {
-            field(i)?.parse().map_err(|_| bad(at(&format!("{} is not a number", HEADER[i]))))
-        };
-        let count = |i: usize| -> Result<usize, EvalError> {
-            field(i)?.parse().map_err(|_| bad(at(&format!("{} is not a count", HEADER[i]))))
-        };
-        let floats = |i: usize| -> Result<Vec<f64>, EvalError> {
-            let cell = field(i)?;
-            if cell.is_empty() {
-                return Ok(Vec::new());
-            }
-            cell.split(';')
-                .map(|v| {
-                    v.parse().map_err(|_| bad(at(&format!("{} holds a non-number", HEADER[i]))))
-                })
-                .collect()
-        };
-        let pair = field(0)?;
-        let pass = count(1)?;
+    for (line, row) in reader.deserialize::<PassRow>().enumerate() {
+        let at = |what: String| bad(format!("line {}: {what}", line + 2));
+        let row = row.map_err(|e| at(cell_error(&e, &HEADER)))?;
         let score = PassScore {
-            epe: float(2)?,
-            rand_index: float(3)?,
-            iou_sum: float(4)?,
-            parts: count(5)?,
+            epe: row.epe,
+            rand_index: row.ri,
+            iou_sum: row.iou_sum,
+            parts: row.parts,
             joints: JointScores {
-                joints: count(6)?,
-                type_correct: count(7)?,
-                axis_errors: floats(8)?,
-                pivot_distances: floats(9)?,
+                joints: row.joints,
+                type_correct: row.type_correct,
+                axis_errors: row.axis_errors,
+                pivot_distances: row.pivot_distances,
             },
         };
+        let (pair, pass) = (row.pair, row.pass);
         match pairs.last_mut() {
             Some(last) if last.pair == pair && pass == last.passes.len() + 1 => {
                 last.passes.push(score)
             }
-            _ if pass == 1 => pairs.push(PairPasses { pair: pair.to_owned(), passes: vec![score] }),
-            _ => return Err(bad(at(&format!("pass {pass} of pair {pair} is out of order")))),
+            _ if pass == 1 => pairs.push(PairPasses { pair, passes: vec![score] }),
+            _ => return Err(at(format!("pass {pass} of pair {pair} is out of order"))),
         }
     }
     Ok(pairs)

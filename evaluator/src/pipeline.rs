@@ -186,10 +186,7 @@ pub fn evaluate(
         .iter()
         .map(|(d, e, result)| Scored { dataset: &loaded[*d].0.name, entry: &entries[*e], result })
         .collect();
-    let failed = scored
-        .iter()
-        .map(|s| s.result.table.rows.iter().filter(|r| !r[2].is_empty()).count())
-        .sum();
+    let failed = scored.iter().map(|s| s.result.rows.iter().filter(|r| !r.scored()).count()).sum();
     std::fs::create_dir_all(&reports)
         .map_err(|source| EvalError::Io { path: reports.clone(), source })?;
     let mut boards = Leaderboards::build(&scored)?;

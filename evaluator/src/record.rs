@@ -1,32 +1,86 @@
 //! Per-pair results of one method on one dataset (`reports/runs/<dataset>/<method>.csv`):
-//! one row per pair with its scores, or the reason it failed, and its time.
+//! one typed [`RunRow`] per pair with its scores, or the reason it failed, and its time,
+//! written and read with serde. The leaderboards build their polars columns from its fields.
 
 use std::path::Path;
 
-use pairs::metrics::{PCC_STEP, PCC_THRESHOLDS};
+use pairs::metrics::{JointError, PCC_STEP, PCC_THRESHOLDS};
+use serde::{Deserialize, Serialize};
 
 use crate::error::EvalError;
 use crate::score::PairScore;
 use pairs::atomic::replace_file;
 
-/// One pair's outcome for one method.
-#[derive(Debug, Clone, PartialEq)]
-pub struct PairRecord {
+/// One pair's row of a runs file: what the leaderboards sum. Every score is `None` on a
+/// failed pair (whose `failed` holds the reason); `epe` and `pcc` are `None` for a method
+/// without flow, the `_q` scores for one without Q's segments. Sums and counts rather than
+/// means, so that the boards can average over parts, matches and joints.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RunRow {
     /// The pair's id.
     pub pair: String,
     /// The pair's object category.
     pub category: String,
-    /// The kinds of the pair's true joints, sorted and joined by `+` (`prismatic+revolute`),
-    /// or `none`: the per-joint-type breakdown of `leaderboard_by_category.csv`.
-    pub joint_types: String,
+    /// Why the pair failed; `None` when it was scored.
+    pub failed: Option<String>,
     /// Milliseconds the method took on the pair (not part of the leaderboards).
     pub ms: f64,
-    /// The scores, or why the pair failed.
-    pub outcome: Result<PairScore, String>,
+    /// End-point error of the flow.
+    pub epe: Option<f64>,
+    /// Rand index of P's segmentation.
+    pub ri: Option<f64>,
+    /// Summed IoU of P's matched parts.
+    pub iou_sum: Option<f64>,
+    /// True parts of P.
+    pub parts: Option<u32>,
+    /// Predicted segments of P.
+    pub segments: Option<u32>,
+    /// Rand index of Q's segmentation.
+    pub ri_q: Option<f64>,
+    /// Summed IoU of Q's matched parts.
+    pub iou_q_sum: Option<f64>,
+    /// True parts of Q.
+    pub parts_q: Option<u32>,
+    /// Parts matched to a segment with a motion.
+    pub matched: Option<u32>,
+    /// Summed rotation error of the matched parts, degrees.
+    pub rotation_sum: Option<f64>,
+    /// Summed translation error of the matched parts.
+    pub translation_sum: Option<f64>,
+    /// Largest rotation error of a matched part, degrees.
+    pub rotation_max: Option<f64>,
+    /// 1 when the method gave a flow, 0 when not.
+    pub has_flow: Option<u8>,
+    /// The kinds of the pair's true joints, sorted and joined by `+` (`prismatic+revolute`),
+    /// or `none`: the per-joint-type breakdown of `leaderboard_by_category.csv` (filled for
+    /// failed pairs too).
+    pub joint_types: String,
+    /// True joints scored.
+    pub joints: Option<u32>,
+    /// Joints whose type was predicted right.
+    pub joints_typed: Option<u32>,
+    /// Summed axis error, degrees, and the joints that have one.
+    pub axis_sum: Option<f64>,
+    /// Joints with an axis error.
+    pub axis_n: Option<u32>,
+    /// Summed distance of revolute axis lines, and the joints that have one.
+    pub line_sum: Option<f64>,
+    /// Joints with a line distance.
+    pub line_n: Option<u32>,
+    /// Summed state error of revolute joints, degrees.
+    pub state_rev_sum: Option<f64>,
+    /// Revolute joints with a state error.
+    pub state_rev_n: Option<u32>,
+    /// Summed state error of prismatic joints.
+    pub state_pri_sum: Option<f64>,
+    /// Prismatic joints with a state error.
+    pub state_pri_n: Option<u32>,
+    /// The PCC curve at thresholds `0, 0.005, ..., 0.25` (columns `pcc_000` .. `pcc_250`);
+    /// `PCC_THRESHOLDS` cells, each `None` without flow.
+    pub pcc: Vec<Option<f64>>,
 }
 
-/// Columns before the PCC curve; the curve follows as `pcc_000` .. `pcc_250` (threshold in
-/// thousandths).
+/// Columns before the PCC curve: [`RunRow`]'s fields in order.
 const FIXED: [&str; 28] = [
     "pair",
     "category",
@@ -58,9 +112,6 @@ const FIXED: [&str; 28] = [
     "state_pri_n",
 ];
 
-/// Index of the `joint_types` column (filled for failed pairs too).
-const JOINT_TYPES: usize = 17;
-
 /// The header of a runs file.
 pub fn header() -> Vec<String> {
     FIXED.iter().map(|s| s.to_string()).chain((0..PCC_THRESHOLDS).map(pcc_column)).collect()
@@ -71,79 +122,96 @@ pub fn pcc_column(k: usize) -> String {
     format!("pcc_{:03}", (k as f64 * PCC_STEP * 1000.0).round() as u32)
 }
 
-/// A number as the shortest text that parses back to the same `f64` (the runs cache's cells).
+/// A number as the shortest text that parses back to the same `f64` (the passes cache's
+/// cells).
 pub(crate) fn num(v: f64) -> String {
-    // Round-trip exact (shortest representation that parses back to the same f64).
     format!("{v:?}")
 }
 
-fn opt(v: Option<f64>) -> String {
-    v.map(num).unwrap_or_default()
-}
-
-impl PairRecord {
-    /// The record as a CSV row in [`header`] order.
-    pub fn to_row(&self) -> Vec<String> {
-        let mut row = vec![self.pair.clone(), self.category.clone()];
-        match &self.outcome {
+impl RunRow {
+    /// The row of a pair: its scores, or why it failed.
+    pub fn new(
+        pair: &str,
+        category: &str,
+        joint_types: &str,
+        ms: f64,
+        outcome: Result<&PairScore, &str>,
+    ) -> Self {
+        let mut row = Self {
+            pair: pair.to_owned(),
+            category: category.to_owned(),
+            failed: None,
+            ms,
+            epe: None,
+            ri: None,
+            iou_sum: None,
+            parts: None,
+            segments: None,
+            ri_q: None,
+            iou_q_sum: None,
+            parts_q: None,
+            matched: None,
+            rotation_sum: None,
+            translation_sum: None,
+            rotation_max: None,
+            has_flow: None,
+            joint_types: joint_types.to_owned(),
+            joints: None,
+            joints_typed: None,
+            axis_sum: None,
+            axis_n: None,
+            line_sum: None,
+            line_n: None,
+            state_rev_sum: None,
+            state_rev_n: None,
+            state_pri_sum: None,
+            state_pri_n: None,
+            pcc: vec![None; PCC_THRESHOLDS],
+        };
+        let s = match outcome {
             Err(reason) => {
-                row.push(reason.clone());
-                row.push(num(self.ms));
-                row.resize(FIXED.len() + PCC_THRESHOLDS, String::new());
-                row[JOINT_TYPES] = self.joint_types.clone();
+                row.failed = Some(reason.to_owned());
+                return row;
             }
-            Ok(s) => {
-                let sum = |v: &[f64]| v.iter().sum::<f64>();
-                let max = s
-                    .rotation_deg
-                    .iter()
-                    .copied()
-                    .fold(None, |m: Option<f64>, v| Some(m.map_or(v, |m| m.max(v))));
-                row.extend([
-                    String::new(),
-                    num(self.ms),
-                    opt(s.flow.as_ref().map(|f| f.epe)),
-                    num(s.p.rand_index),
-                    num(s.p.iou_sum),
-                    s.parts.to_string(),
-                    s.segments.to_string(),
-                    opt(s.q.as_ref().map(|q| q.rand_index)),
-                    opt(s.q.as_ref().map(|q| q.iou_sum)),
-                    s.q.as_ref().map(|q| q.parts.to_string()).unwrap_or_default(),
-                    s.rotation_deg.len().to_string(),
-                    num(sum(&s.rotation_deg)),
-                    num(sum(&s.translation)),
-                    opt(max),
-                    u8::from(s.flow.is_some()).to_string(),
-                    self.joint_types.clone(),
-                ]);
-                row.extend(joint_cells(&s.joints));
-                match &s.flow {
-                    Some(f) => row.extend(f.pcc.iter().map(|&v| num(v))),
-                    None => row.resize(FIXED.len() + PCC_THRESHOLDS, String::new()),
-                }
-            }
+            Ok(s) => s,
+        };
+        let count = |n: usize| Some(n as u32);
+        row.epe = s.flow.as_ref().map(|f| f.epe);
+        row.ri = Some(s.p.rand_index);
+        row.iou_sum = Some(s.p.iou_sum);
+        row.parts = Some(s.parts);
+        row.segments = Some(s.segments);
+        row.ri_q = s.q.as_ref().map(|q| q.rand_index);
+        row.iou_q_sum = s.q.as_ref().map(|q| q.iou_sum);
+        row.parts_q = s.q.as_ref().map(|q| q.parts);
+        row.matched = count(s.rotation_deg.len());
+        row.rotation_sum = Some(s.rotation_deg.iter().sum());
+        row.translation_sum = Some(s.translation.iter().sum());
+        row.rotation_max = s.rotation_deg.iter().copied().reduce(f64::max);
+        row.has_flow = Some(u8::from(s.flow.is_some()));
+        row.joints = count(s.joints.len());
+        row.joints_typed = count(s.joints.iter().filter(|j| j.type_correct()).count());
+        let sum_count = |values: Vec<f64>| (Some(values.iter().sum()), count(values.len()));
+        let revolute = |j: &&JointError| j.truth == pairs::JointKind::Revolute;
+        let joints = &s.joints;
+        (row.axis_sum, row.axis_n) = sum_count(joints.iter().filter_map(|j| j.axis_deg).collect());
+        (row.line_sum, row.line_n) =
+            sum_count(joints.iter().filter_map(|j| j.line_distance).collect());
+        (row.state_rev_sum, row.state_rev_n) =
+            sum_count(joints.iter().filter(revolute).filter_map(|j| j.state_error).collect());
+        (row.state_pri_sum, row.state_pri_n) = sum_count(
+            joints.iter().filter(|j| !revolute(j)).filter_map(|j| j.state_error).collect(),
+        );
+        if let Some(f) = &s.flow {
+            row.pcc = f.pcc.iter().map(|&v| Some(v)).collect();
         }
         row
     }
-}
 
-/// The joint columns of a scored pair: joints, joints typed right, then sum and count of
-/// the axis errors, line distances, revolute and prismatic state errors.
-fn joint_cells(joints: &[pairs::metrics::JointError]) -> Vec<String> {
-    let sum_count = |values: Vec<f64>| [num(values.iter().sum()), values.len().to_string()];
-    let revolute = |j: &&pairs::metrics::JointError| j.truth == pairs::JointKind::Revolute;
-    let mut cells = vec![
-        joints.len().to_string(),
-        joints.iter().filter(|j| j.type_correct()).count().to_string(),
-    ];
-    cells.extend(sum_count(joints.iter().filter_map(|j| j.axis_deg).collect()));
-    cells.extend(sum_count(joints.iter().filter_map(|j| j.line_distance).collect()));
-    cells.extend(sum_count(joints.iter().filter(revolute).filter_map(|j| j.state_error).collect()));
-    cells.extend(sum_count(
-        joints.iter().filter(|j| !revolute(j)).filter_map(|j| j.state_error).collect(),
-    ));
-    cells
+    /// Whether the pair was scored (did not fail).
+    pub fn scored(&self) -> bool {
+        self.failed.is_none()
+    }
 }
 
 /// The `joint_types` cell of a pair: its true joints' kinds, sorted, deduplicated and joined
@@ -159,31 +227,43 @@ pub fn joint_types(truth: &pairs::GroundTruth) -> String {
     }
 }
 
-/// Writes `records` to `path`, replacing an old file only once the new one is complete.
-pub fn write_records(path: &Path, records: &[PairRecord]) -> Result<(), EvalError> {
+/// Writes `rows` to `path`, replacing an old file only once the new one is complete.
+pub fn write_rows(path: &Path, rows: &[RunRow]) -> Result<(), EvalError> {
+    let bad = |e: csv::Error| EvalError::Csv { path: path.to_path_buf(), message: e.to_string() };
     replace_file(path, |out| {
-        let bad =
-            |e: csv::Error| EvalError::Csv { path: path.to_path_buf(), message: e.to_string() };
-        let mut writer = csv::Writer::from_writer(out);
+        // The header by hand: serde names no column of the PCC curve's sequence.
+        let mut writer = csv::WriterBuilder::new().has_headers(false).from_writer(out);
         writer.write_record(header()).map_err(bad)?;
-        for r in records {
-            writer.write_record(r.to_row()).map_err(bad)?;
+        for row in rows {
+            if row.pcc.len() != PCC_THRESHOLDS {
+                return Err(bad(csv::Error::from(std::io::Error::other(format!(
+                    "pair {}: {} PCC values, expected {PCC_THRESHOLDS}",
+                    row.pair,
+                    row.pcc.len()
+                )))));
+            }
+            writer.serialize(row).map_err(bad)?;
         }
         writer.flush().map_err(|source| EvalError::Io { path: path.to_path_buf(), source })
     })
 }
 
-/// A runs file read back as rows of named string cells (the leaderboard parses the numbers).
-#[derive(Debug, Clone)]
-pub struct RunTable {
-    /// Column names.
-    pub header: Vec<String>,
-    /// Rows, each as long as the header.
-    pub rows: Vec<Vec<String>>,
+/// A CSV error of one row, naming the column of the cell that failed to deserialise.
+pub(crate) fn cell_error<S: AsRef<str>>(error: &csv::Error, header: &[S]) -> String {
+    match error.kind() {
+        csv::ErrorKind::Deserialize { err, .. } => {
+            let column = err.field().and_then(|f| header.get(f as usize));
+            match column {
+                Some(name) => format!("column {}: {}", name.as_ref(), err.kind()),
+                None => err.to_string(),
+            }
+        }
+        _ => error.to_string(),
+    }
 }
 
-/// Reads a runs file, checking that its header is this version's.
-pub fn read_records(path: &Path) -> Result<RunTable, EvalError> {
+/// Reads a runs file, checking that its header is this version's and every row is whole.
+pub fn read_rows(path: &Path) -> Result<Vec<RunRow>, EvalError> {
     let bad = |message: String| EvalError::Csv { path: path.to_path_buf(), message };
     let mut reader = csv::Reader::from_path(path).map_err(|e| bad(e.to_string()))?;
     let found: Vec<String> =
@@ -191,9 +271,81 @@ pub fn read_records(path: &Path) -> Result<RunTable, EvalError> {
     if found != header() {
         return Err(bad("the header is not this evaluator's (rerun the method)".into()));
     }
-    let rows = reader
+    reader
         .records()
-        .map(|r| r.map(|r| r.iter().map(str::to_owned).collect()).map_err(|e| bad(e.to_string())))
-        .collect::<Result<_, _>>()?;
-    Ok(RunTable { header: found, rows })
+        .enumerate()
+        .map(|(i, record)| {
+            let line = i + 2;
+            let record = record.map_err(|e| bad(format!("line {line}: {e}")))?;
+            // By position: the PCC curve is the sequence that ends the row.
+            record
+                .deserialize::<RunRow>(None)
+                .map_err(|e| bad(format!("line {line}: {}", cell_error(&e, &found))))
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::score::{FlowScore, SegmentScore};
+
+    fn score(flow: bool) -> PairScore {
+        let pcc = std::array::from_fn(|k| (k as f64 / 60.0).min(1.0));
+        PairScore {
+            flow: flow.then_some(FlowScore { epe: 0.1 + 1e-17, pcc }),
+            p: SegmentScore { rand_index: 2.0 / 3.0, iou_sum: 1.75, parts: 2 },
+            q: flow.then_some(SegmentScore { rand_index: 0.5, iou_sum: 1.0, parts: 3 }),
+            parts: 2,
+            segments: 3,
+            rotation_deg: vec![1.5, 7.25],
+            translation: vec![0.125, 1e-300],
+            joints: Vec::new(),
+        }
+    }
+
+    #[test]
+    fn rows_round_trip_through_the_runs_file() {
+        let rows = vec![
+            RunRow::new("a", "laptop", "revolute", 12.5, Ok(&score(true))),
+            RunRow::new("b", "oven", "none", 0.1, Ok(&score(false))),
+            RunRow::new("c", "fan", "prismatic+revolute", 3.0, Err("no consensus, at all")),
+        ];
+        assert_eq!(rows[0].rotation_max, Some(7.25));
+        assert_eq!((rows[1].has_flow, rows[1].epe, rows[1].pcc[3]), (Some(0), None, None));
+        assert_eq!((rows[2].ri, rows[2].joint_types.as_str()), (None, "prismatic+revolute"));
+        let dir = tempfile::tempdir().expect("a temp dir");
+        let path = dir.path().join("m.csv");
+        write_rows(&path, &rows).expect("written");
+        assert_eq!(read_rows(&path).expect("read"), rows);
+        let text = std::fs::read_to_string(&path).expect("read");
+        assert!(text.starts_with(&header().join(",")));
+        assert!(text.contains("\"no consensus, at all\""));
+    }
+
+    #[test]
+    fn malformed_runs_files_are_errors_naming_the_line() {
+        let dir = tempfile::tempdir().expect("a temp dir");
+        let path = dir.path().join("m.csv");
+        let good = RunRow::new("a", "laptop", "revolute", 12.5, Ok(&score(true)));
+        write_rows(&path, &[good.clone(), good]).expect("written");
+        let text = std::fs::read_to_string(&path).expect("read");
+        let lines: Vec<&str> = text.lines().collect();
+        let cases = [
+            (
+                format!("{}\n{}\n", lines[0], lines[1].replacen("12.5", "fast", 1)),
+                "line 2: column ms",
+            ),
+            (format!("{}\n{}\n{}\n", lines[0], lines[1], "a,laptop"), "line 3"),
+            (format!("pair,category\n{}\n", lines[1]), "header"),
+        ];
+        for (text, expected) in cases {
+            std::fs::write(&path, text).expect("written");
+            let err = read_rows(&path).expect_err(expected).to_string();
+            assert!(err.contains(expected) && err.contains("m.csv"), "{err}");
+        }
+        let short = RunRow { pcc: vec![None; 3], ..RunRow::new("z", "c", "none", 1.0, Err("x")) };
+        let err = write_rows(&path, &[short]).expect_err("a short curve").to_string();
+        assert!(err.contains("3 PCC values"), "{err}");
+    }
 }

@@ -20,7 +20,7 @@ use crate::datasets::LoadedDataset;
 use crate::error::EvalError;
 use crate::memory;
 use crate::passes::{passes_path, read_passes, score_passes, write_passes, PairPasses};
-use crate::record::{joint_types, read_records, write_records, PairRecord, RunTable};
+use crate::record::{joint_types, read_rows, write_rows, RunRow};
 use crate::registry::{method_flow_name, Entry, FlowSource, Runner};
 use crate::score::score_pair;
 use pairs::atomic::replace_file;
@@ -46,8 +46,8 @@ pub struct RunMeta {
 /// One row's results on one dataset.
 #[derive(Debug, Clone)]
 pub struct RunResult {
-    /// The per-pair table (as written to the runs file).
-    pub table: RunTable,
+    /// One row per pair (as written to the runs file).
+    pub rows: Vec<RunRow>,
     /// The sidecar.
     pub meta: RunMeta,
     /// Whether it came from the cache.
@@ -212,8 +212,8 @@ pub fn cached_run(
             && m.fingerprint == entry.fingerprint_for(&dataset.name)
             && m.dataset == dataset.content_hash
     })?;
-    let table = read_records(&path).ok().filter(|t| t.rows.len() == dataset.pairs.len())?;
-    let failed = |id: &String| table.rows.iter().any(|r| &r[0] == id && !r[2].is_empty());
+    let rows = read_rows(&path).ok().filter(|rows| rows.len() == dataset.pairs.len())?;
+    let failed = |id: &String| rows.iter().any(|r| &r.pair == id && !r.scored());
     let complete = options.gallery.iter().all(|id| meta.gallery.contains_key(id) || failed(id));
     // An iterative row's passes must be there too, and of this dataset's pairs.
     let passes = match iterative(&entry.runner) {
@@ -227,7 +227,7 @@ pub fn cached_run(
         }
         None => None,
     };
-    complete.then_some(RunResult { table, meta, cached: true, passes })
+    complete.then_some(RunResult { rows, meta, cached: true, passes })
 }
 
 /// Runs `entry` on `dataset` (or reuses its cached run unless `force`), calling `progress`
@@ -262,7 +262,7 @@ pub fn run_entry(
     memory::reset_peak();
     let iterative = iterative(runner);
     type Outcome = (
-        PairRecord,
+        RunRow,
         Option<Vec<u32>>,
         Result<Vec<Vector3>, String>,
         Option<Vec<crate::passes::PassScore>>,
@@ -290,18 +290,13 @@ pub fn run_entry(
                 scored.map(|s| (s, p.segments_p))
             });
             progress();
-            let (outcome, segments) = match outcome {
-                Ok((score, segments)) => (Ok(score), Some(segments)),
-                Err(reason) => (Err(reason), None),
+            let (outcome, segments) = match &outcome {
+                Ok((score, segments)) => (Ok(score), Some(segments.clone())),
+                Err(reason) => (Err(reason.as_str()), None),
             };
             let keep = options.gallery.iter().any(|g| g == pair.id());
-            let record = PairRecord {
-                pair: pair.id().to_owned(),
-                category: pair.provenance().category.clone(),
-                joint_types: joint_types(pair.truth()),
-                ms,
-                outcome,
-            };
+            let types = joint_types(pair.truth());
+            let record = RunRow::new(pair.id(), &pair.provenance().category, &types, ms, outcome);
             (record, segments.filter(|_| keep), own_flow, passes)
         })
         .collect();
@@ -314,7 +309,7 @@ pub fn run_entry(
             gallery.insert(record.pair.clone(), segments);
         }
         // A pair that failed, or whose passes were not scored, has none.
-        if let (Some(scores), true) = (pair_passes, record.outcome.is_ok()) {
+        if let (Some(scores), true) = (pair_passes, record.scored()) {
             passes.push(PairPasses { pair: record.pair.clone(), passes: scores });
         }
         records.push(record);
@@ -336,7 +331,7 @@ pub fn run_entry(
         std::fs::remove_file(&meta_path)
             .map_err(|source| EvalError::Io { path: meta_path.clone(), source })?;
     }
-    write_records(&path, &records)?;
+    write_rows(&path, &records)?;
     if let Some(passes) = &passes {
         write_passes(&passes_path(&path), passes)?;
     }
@@ -345,9 +340,5 @@ pub fn run_entry(
         out.write_all(json.as_bytes())
             .map_err(|source| EvalError::Io { path: meta_path.clone(), source })
     })?;
-    let table = RunTable {
-        header: crate::record::header(),
-        rows: records.iter().map(PairRecord::to_row).collect(),
-    };
-    Ok(RunResult { table, meta, cached: false, passes })
+    Ok(RunResult { rows: records, meta, cached: false, passes })
 }

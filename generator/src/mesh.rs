@@ -173,7 +173,7 @@ impl Mesh {
 
     /// Total surface area.
     pub fn area(&self) -> Real {
-        (0..self.triangles.len()).map(|i| triangle_area(&self.corners(i))).sum()
+        (0..self.triangles.len()).map(|i| pairs::sampling::triangle_area(&self.corners(i))).sum()
     }
 }
 
@@ -185,11 +185,6 @@ fn along(a: Point3, b: Point3) -> Isometry3 {
         UnitQuaternion::from_axis_angle(&Vector3::x_axis(), std::f32::consts::PI)
     });
     Isometry3::from_parts(nalgebra::center(&a, &b).coords.into(), rotation)
-}
-
-/// Area of a triangle.
-pub fn triangle_area([a, b, c]: &[Point3; 3]) -> Real {
-    (b - a).cross(&(c - a)).norm() * 0.5
 }
 
 #[cfg(test)]

@@ -1,9 +1,8 @@
 //! Area-weighted uniform sampling of an object's surface.
 
 use pairs::math::{Isometry3, Point3};
-use rand::Rng as _;
+use pairs::sampling::{point_on_triangle, triangle_area, AreaSampler};
 
-use crate::mesh::triangle_area;
 use crate::objects::ArticulatedObject;
 use crate::seed::Rng;
 
@@ -24,59 +23,47 @@ impl SurfacePoint {
     }
 }
 
-/// Draws points uniformly by area over all links of an object. Areas do not change with
-/// the articulation, so one sampler serves every state.
+/// Draws points uniformly by area over all links of an object ([`AreaSampler`] over every
+/// triangle of every link). Areas do not change with the articulation, so one sampler
+/// serves every state.
 #[derive(Debug, Clone)]
 pub struct SurfaceSampler {
-    /// (link, triangle) of each entry of `cumulative`.
+    /// (link, triangle) of each triangle of the object, in link order.
     triangles: Vec<(usize, usize)>,
-    /// Running sum of triangle areas, f64 so that large meshes keep small triangles.
-    cumulative: Vec<f64>,
+    /// Draws an index into `triangles` by area.
+    areas: AreaSampler,
 }
 
 impl SurfaceSampler {
     /// Builds the area table of an object.
     pub fn new(object: &ArticulatedObject) -> Self {
-        let mut triangles = Vec::new();
-        let mut cumulative = Vec::new();
-        let mut total = 0.0f64;
-        for (link, l) in object.links.iter().enumerate() {
-            for t in 0..l.mesh.triangles.len() {
-                let area = f64::from(triangle_area(&l.mesh.corners(t)));
-                if area > 0.0 {
-                    total += area;
-                    triangles.push((link, t));
-                    cumulative.push(total);
-                }
-            }
-        }
-        Self { triangles, cumulative }
+        let triangles: Vec<(usize, usize)> = object
+            .links
+            .iter()
+            .enumerate()
+            .flat_map(|(link, l)| (0..l.mesh.triangles.len()).map(move |t| (link, t)))
+            .collect();
+        let areas = AreaSampler::new(
+            triangles.iter().map(|&(link, t)| triangle_area(&object.links[link].mesh.corners(t))),
+        );
+        Self { triangles, areas }
     }
 
     /// Total surface area, rest frame units squared.
     pub fn total_area(&self) -> f64 {
-        self.cumulative.last().copied().unwrap_or(0.0)
+        self.areas.total_area()
     }
 
     /// Draws `n` points; empty if the object has no area.
     pub fn sample(&self, object: &ArticulatedObject, n: usize, rng: &mut Rng) -> Vec<SurfacePoint> {
-        let total = self.total_area();
-        if total <= 0.0 {
+        if self.total_area() <= 0.0 {
             return Vec::new();
         }
         (0..n)
-            .map(|_| {
-                let u = rng.random::<f64>() * total;
-                let i = self.cumulative.partition_point(|&c| c <= u).min(self.triangles.len() - 1);
-                let (link, t) = self.triangles[i];
-                let [a, b, c] = object.links[link].mesh.corners(t);
-                // Uniform barycentric coordinates (Osada et al. 2002).
-                let r1 = rng.random::<f32>().sqrt();
-                let r2 = rng.random::<f32>();
-                let rest = Point3::from(
-                    a.coords * (1.0 - r1) + b.coords * (r1 * (1.0 - r2)) + c.coords * (r1 * r2),
-                );
-                SurfacePoint { link, rest }
+            .filter_map(|_| {
+                let (link, t) = self.triangles[self.areas.draw(rng)?];
+                let rest = point_on_triangle(rng, object.links[link].mesh.corners(t));
+                Some(SurfacePoint { link, rest })
             })
             .collect()
     }

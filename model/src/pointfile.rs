@@ -1,13 +1,16 @@
 //! Reading a user's point cloud or mesh and writing coloured point clouds, for `model infer`
 //! and `model animate`: PLY (ASCII or binary little-endian; the vertex element's `x y z`,
-//! any other properties skipped) and Wavefront OBJ (`v` lines; with `f` lines the surface is
-//! sampled, area-weighted, from a fixed seed). Clouds larger than the network's input are
+//! any other properties skipped) and Wavefront OBJ, read by the generator's OBJ reader (its
+//! faces' surface sampled by `pairs`' area-weighted sampler from a fixed seed; a file
+//! without faces is the cloud of its `v` lines). Clouds larger than the network's input are
 //! reduced by farthest-point sampling.
 
 use std::path::{Path, PathBuf};
 
+use generator::import::mesh_files::parse_obj;
 use pairs::math::{Point3, Real};
-use rand::{Rng, SeedableRng};
+use pairs::sampling::{point_on_triangle, triangle_area, AreaSampler};
+use rand::SeedableRng;
 
 /// Why a point file could not be read or written.
 #[derive(Debug, thiserror::Error)]
@@ -30,6 +33,9 @@ pub enum PointFileError {
         /// What is wrong (line or field named).
         message: String,
     },
+    /// An OBJ file the generator's OBJ reader refused (its message names the file).
+    #[error(transparent)]
+    Obj(#[from] generator::import::ImportError),
 }
 
 fn malformed(path: &Path, message: impl Into<String>) -> PointFileError {
@@ -160,74 +166,49 @@ fn read_ply(path: &Path, bytes: &[u8]) -> Result<Vec<Point3>, PointFileError> {
     }
 }
 
+/// An OBJ's surface through the generator's OBJ reader (`tobj`, fuzzed): every group's
+/// triangles sampled by area; an OBJ without faces is a point cloud of its `v` lines.
 fn read_obj(path: &Path, bytes: &[u8], samples: usize) -> Result<Vec<Point3>, PointFileError> {
     let text = String::from_utf8_lossy(bytes);
-    let (mut vertices, mut faces) = (Vec::new(), Vec::new());
-    for (n, line) in text.lines().enumerate() {
-        let mut words = line.split_whitespace();
-        match words.next() {
-            Some("v") => {
-                let v: Vec<Real> = words.take(3).filter_map(|w| w.parse().ok()).collect();
-                if v.len() != 3 {
-                    return Err(malformed(path, format!("line {}: a vertex needs x y z", n + 1)));
-                }
-                vertices.push(Point3::new(v[0], v[1], v[2]));
-            }
-            Some("f") => {
-                let ids: Vec<usize> = words
-                    .map(|w| {
-                        let first = w.split('/').next().unwrap_or_default();
-                        let i: i64 = first.parse().map_err(|_| {
-                            malformed(path, format!("line {}: face index {w}", n + 1))
-                        })?;
-                        let k = if i < 0 { vertices.len() as i64 + i } else { i - 1 };
-                        usize::try_from(k).ok().filter(|&k| k < vertices.len()).ok_or_else(|| {
-                            malformed(path, format!("line {}: face index {w} out of range", n + 1))
-                        })
-                    })
-                    .collect::<Result<_, _>>()?;
-                // A polygon as a fan of triangles.
-                for k in 1..ids.len().saturating_sub(1) {
-                    faces.push([ids[0], ids[k], ids[k + 1]]);
-                }
-            }
-            _ => {}
-        }
+    let groups = parse_obj(path, &text)?;
+    let triangles: Vec<[Point3; 3]> = groups
+        .iter()
+        .flat_map(|g| g.triangles.iter().map(|t| t.map(|v| g.positions[v as usize])))
+        .collect();
+    if triangles.is_empty() {
+        return obj_vertices(path, &text);
     }
-    if faces.is_empty() {
-        return Ok(vertices);
-    }
-    Ok(sample_surface(&vertices, &faces, samples, 0))
+    Ok(sample_surface(&triangles, samples, 0))
 }
 
-/// `n` points sampled uniformly on the triangles' surface (area-weighted) from `seed`.
-pub fn sample_surface(
-    vertices: &[Point3],
-    faces: &[[usize; 3]],
-    n: usize,
-    seed: u64,
-) -> Vec<Point3> {
-    let mut cumulative = Vec::with_capacity(faces.len());
-    let mut total = 0.0f64;
-    for f in faces {
-        let (a, b, c) = (vertices[f[0]], vertices[f[1]], vertices[f[2]]);
-        total += f64::from((b - a).cross(&(c - a)).norm() / 2.0);
-        cumulative.push(total);
-    }
-    if total <= 0.0 {
-        return faces.iter().take(n).map(|f| vertices[f[0]]).collect();
-    }
-    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
-    (0..n)
-        .map(|_| {
-            let pick = rng.random::<f64>() * total;
-            let f = faces[cumulative.partition_point(|&c| c < pick).min(faces.len() - 1)];
-            let (mut u, mut v): (Real, Real) = (rng.random(), rng.random());
-            if u + v > 1.0 {
-                (u, v) = (1.0 - u, 1.0 - v);
+/// The `v` lines of an OBJ without faces.
+fn obj_vertices(path: &Path, text: &str) -> Result<Vec<Point3>, PointFileError> {
+    let mut vertices = Vec::new();
+    for (n, line) in text.lines().enumerate() {
+        let mut words = line.split_whitespace();
+        if words.next() == Some("v") {
+            let v: Vec<Real> = words.take(3).filter_map(|w| w.parse().ok()).collect();
+            if v.len() != 3 {
+                return Err(malformed(path, format!("line {}: a vertex needs x y z", n + 1)));
             }
-            let (a, b, c) = (vertices[f[0]], vertices[f[1]], vertices[f[2]]);
-            a + (b - a) * u + (c - a) * v
+            vertices.push(Point3::new(v[0], v[1], v[2]));
+        }
+    }
+    Ok(vertices)
+}
+
+/// `n` points sampled uniformly on the triangles' surface (area-weighted, `pairs`'
+/// [`AreaSampler`]) from `seed`; the triangles' first corners when none has an area.
+pub fn sample_surface(triangles: &[[Point3; 3]], n: usize, seed: u64) -> Vec<Point3> {
+    let areas = AreaSampler::new(triangles.iter().map(triangle_area));
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+    if areas.total_area() <= 0.0 {
+        return triangles.iter().take(n).map(|t| t[0]).collect();
+    }
+    (0..n)
+        .filter_map(|_| {
+            let t = areas.draw(&mut rng)?;
+            Some(point_on_triangle(&mut rng, triangles[t]))
         })
         .collect()
 }
@@ -297,8 +278,8 @@ mod tests {
                 "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nend_header\n1\n",
                 "no vertex property y",
             ),
-            ("b.obj", "v 1 2\n", "line 1"),
-            ("c.obj", "v 0 0 0\nf 1 2 3\n", "out of range"),
+            ("b.obj", "v 1 2\n", "not valid OBJ"),
+            ("c.obj", "v 0 0 0\nf 1 2 3\n", "index out of bounds"),
             ("d.obj", "v nan 0 0\n", "not finite"),
             ("e.obj", "# nothing\n", "no points"),
             ("f.xyz", "", "expected a .ply or .obj"),

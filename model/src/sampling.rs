@@ -1,10 +1,11 @@
 //! Index computations of PointNet++ that need no gradient: farthest point sampling, ball
 //! queries and 3-nearest-neighbour interpolation weights, on plain `[f32; 3]` points.
 //!
-//! Farthest point sampling starts at the point farthest from the cloud's centroid instead
-//! of at index 0 (the authors' CUDA kernel), so the chosen points, as a set and in order,
-//! do not depend on the order of the input points (ties aside): permuting a cloud permutes
-//! every per-point output of the network the same way.
+//! Farthest point sampling is `pairs`' one ([`pairs::sampling::farthest_point_sampling`])
+//! started at the point farthest from the cloud's centroid (as the authors' CUDA kernel
+//! does), so the chosen points, as a set and in order, do not depend on the order of the
+//! input points (ties aside): permuting a cloud permutes every per-point output of the
+//! network the same way.
 
 /// Why indices could not be computed.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -23,6 +24,9 @@ pub enum SamplingError {
     NotFinite(usize),
 }
 
+use pairs::math::Point3;
+use pairs::sampling::farthest_from_centroid;
+
 /// Squared Euclidean distance of two points.
 pub(crate) fn distance2(a: &[f32; 3], b: &[f32; 3]) -> f32 {
     (a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)
@@ -38,40 +42,8 @@ pub fn farthest_point_sampling(points: &[[f32; 3]], m: usize) -> Result<Vec<usiz
     if let Some(bad) = points.iter().position(|p| !p.iter().all(|c| c.is_finite())) {
         return Err(SamplingError::NotFinite(bad));
     }
-    if m == 0 {
-        return Ok(Vec::new());
-    }
-    let n = points.len() as f32;
-    let centroid = points
-        .iter()
-        .fold([0.0f32; 3], |acc, p| [acc[0] + p[0] / n, acc[1] + p[1] / n, acc[2] + p[2] / n]);
-    let first = argmax(points.iter().map(|p| distance2(p, &centroid)));
-    let mut chosen = Vec::with_capacity(m);
-    let mut nearest = vec![f32::INFINITY; points.len()];
-    let mut taken = vec![false; points.len()];
-    let mut next = first;
-    for _ in 0..m {
-        chosen.push(next);
-        taken[next] = true;
-        let latest = points[next];
-        for (d, p) in nearest.iter_mut().zip(points) {
-            *d = d.min(distance2(p, &latest));
-        }
-        // Taken points score -1 so that exact duplicates (distance 0) still come before them.
-        next = argmax(nearest.iter().zip(&taken).map(|(&d, &t)| if t { -1.0 } else { d }));
-    }
-    Ok(chosen)
-}
-
-/// Index of the largest value; the first one on ties.
-fn argmax(values: impl Iterator<Item = f32>) -> usize {
-    let mut best = (0, f32::NEG_INFINITY);
-    for (i, v) in values.enumerate() {
-        if v > best.1 {
-            best = (i, v);
-        }
-    }
-    best.0
+    let cloud: Vec<Point3> = points.iter().map(|&p| Point3::from(p)).collect();
+    Ok(pairs::sampling::farthest_point_sampling(&cloud, m, farthest_from_centroid(&cloud)))
 }
 
 /// For each centre, `k` indices of points within `radius` of it, nearest first; a ball with

@@ -8,7 +8,8 @@
 //! motion math every crate shares, and [`dataset`] reads and writes dataset folders
 //! (`pairs.mcap`, `index.csv`, `manifest.json`; see docs/FORMAT.md), and [`predictions`]
 //! reads and writes one method's predictions for a dataset (`predictions.mcap`). Every file
-//! any crate writes goes through [`atomic`]: whole or not at all.
+//! any crate writes goes through [`atomic`]: whole or not at all. [`sampling`] holds the one
+//! farthest point sampling and the one area-weighted surface sampler every crate uses.
 //!
 //! ```
 //! use pairs::{synthetic, Pair};
@@ -45,6 +46,7 @@ pub mod metrics;
 pub mod pair;
 pub mod parts;
 pub mod predictions;
+pub mod sampling;
 pub mod scan;
 pub mod screw;
 pub mod segments;

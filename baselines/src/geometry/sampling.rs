@@ -1,6 +1,6 @@
 //! Per-pair seeding and the samplers shared by the randomised baselines.
 
-use pairs::math::{Point3, Real};
+use pairs::math::Point3;
 use rand::Rng;
 
 /// A seed for one pair: a stable FNV-1a hash of the pair's id mixed with the method's seed,
@@ -40,24 +40,14 @@ pub fn sample_local_triplet<R: Rng>(
     Some([first, a, b])
 }
 
-/// Indices of `count` points spread over the cloud by farthest point sampling, starting
-/// from point 0; all points when `count >= points.len()`.
+/// Indices of `count` points spread over the cloud by farthest point sampling
+/// ([`pairs::sampling::farthest_point_sampling`]) from point 0; all points, in index order,
+/// when `count >= points.len()`.
 pub fn sample_farthest_points(points: &[Point3], count: usize) -> Vec<usize> {
     if count >= points.len() {
         return (0..points.len()).collect();
     }
-    let mut chosen = Vec::with_capacity(count);
-    let mut distance = vec![Real::MAX; points.len()];
-    let mut next = 0;
-    while chosen.len() < count {
-        chosen.push(next);
-        let centre = points[next];
-        for (d, x) in distance.iter_mut().zip(points) {
-            *d = d.min((x - centre).norm_squared());
-        }
-        next = distance.iter().enumerate().max_by(|a, b| a.1.total_cmp(b.1)).map_or(0, |(i, _)| i);
-    }
-    chosen
+    pairs::sampling::farthest_point_sampling(points, count, 0)
 }
 
 #[cfg(test)]
@@ -91,7 +81,8 @@ mod tests {
 
     #[test]
     fn farthest_points_are_distinct_and_spread() {
-        let points: Vec<Point3> = (0..50).map(|i| Point3::new(i as Real, 0.0, 0.0)).collect();
+        let points: Vec<Point3> =
+            (0..50).map(|i| Point3::new(i as pairs::math::Real, 0.0, 0.0)).collect();
         let chosen = sample_farthest_points(&points, 3);
         assert_eq!(chosen[..2], [0, 49]);
         assert!(chosen[2] == 24 || chosen[2] == 25);

@@ -1,12 +1,11 @@
 //! The virtual scanner: a pinhole camera at a random viewpoint renders the posed object by
 //! ray casting ([`render`]), the noise model turns the rendering into a measurement
 //! ([`noise`]), valid pixels are back-projected to points, and farthest point sampling
-//! ([`fps`]) keeps N of them. Viewpoints that see too little of the object, or too little
+//! ([`pairs::sampling::farthest_point_sampling`]) keeps N of them. Viewpoints that see too little of the object, or too little
 //! of any part, are drawn again ([`scan_side`]). [`visibility`] decides which surface
 //! points a camera sees, for the correspondence mask.
 
 pub mod camera;
-pub mod fps;
 pub mod images;
 pub mod noise;
 pub mod render;
@@ -15,6 +14,7 @@ pub mod visibility;
 
 use pairs::math::{Point3, Real};
 use pairs::parts::part_sizes;
+use pairs::sampling::farthest_point_sampling;
 use pairs::PartId;
 use rand::seq::index;
 use rand::Rng as _;
@@ -195,5 +195,8 @@ fn sample_pixels(pixels: &[PixelPoint], n: usize, pool: usize, rng: &mut Rng) ->
     subset.sort_unstable();
     let points: Vec<Point3> = subset.iter().map(|&i| pixels[i].point).collect();
     let start = rng.random_range(0..points.len());
-    fps::farthest_point_sampling(&points, n, start).into_iter().map(|i| subset[i]).collect()
+    if points.len() <= n {
+        return subset;
+    }
+    farthest_point_sampling(&points, n, start).into_iter().map(|i| subset[i]).collect()
 }
