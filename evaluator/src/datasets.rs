@@ -204,6 +204,29 @@ pub fn remembered_datasets(reports: &Path) -> Vec<DatasetSpec> {
     map.iter().map(|(name, path)| DatasetSpec::user(name, path)).collect()
 }
 
+/// Every dataset the boards know: the defaults, then the user datasets remembered in
+/// `reports` whose folders under `datasets_root` exist (they stay in the boards without
+/// being rerun), then `user` (the `--dataset` flags), a later one replacing an earlier one
+/// of the same name. A user dataset may not take a default's name.
+pub fn dataset_specs(
+    reports: &Path,
+    datasets_root: &Path,
+    user: &[DatasetSpec],
+) -> Result<Vec<DatasetSpec>, EvalError> {
+    let mut specs = default_datasets();
+    let remembered = remembered_datasets(reports)
+        .into_iter()
+        .filter(|s| s.dir(datasets_root).join(pairs::dataset::MANIFEST_FILE).exists());
+    for spec in remembered.chain(user.iter().cloned()) {
+        if specs.iter().any(|s| s.name == spec.name && s.config.is_some()) {
+            return Err(EvalError::DefaultName(spec.name));
+        }
+        specs.retain(|s| s.name != spec.name);
+        specs.push(spec);
+    }
+    Ok(specs)
+}
+
 /// Remembers `specs`' user datasets in `reports` beside the ones already there.
 pub fn remember_datasets(reports: &Path, specs: &[DatasetSpec]) -> Result<(), EvalError> {
     let mut map: std::collections::BTreeMap<String, PathBuf> =
@@ -222,4 +245,31 @@ pub fn remember_datasets(reports: &Path, specs: &[DatasetSpec]) -> Result<(), Ev
         std::io::Write::write_all(out, json.as_bytes())
             .map_err(|source| EvalError::Io { path: path.clone(), source })
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn specs_are_the_defaults_then_remembered_folders_that_exist_then_the_flags() {
+        let dir = tempfile::tempdir().expect("a temp dir");
+        let (reports, root) = (dir.path().join("reports"), dir.path().join("datasets"));
+        let here = dir.path().join("here");
+        std::fs::create_dir_all(&here).expect("made");
+        std::fs::write(here.join(pairs::dataset::MANIFEST_FILE), "{}").expect("written");
+        let gone = dir.path().join("gone");
+        let remembered = [DatasetSpec::user("mine", &here), DatasetSpec::user("old", &gone)];
+        remember_datasets(&reports, &remembered).expect("remembered");
+        let names = |specs: Vec<DatasetSpec>| specs.into_iter().map(|s| s.name).collect::<Vec<_>>();
+        let defaults = names(default_datasets());
+        let specs = dataset_specs(&reports, &root, &[]).expect("specs");
+        assert_eq!(names(specs), [defaults.clone(), vec!["mine".into()]].concat());
+        let flag = DatasetSpec::user("mine", &gone);
+        let specs = dataset_specs(&reports, &root, std::slice::from_ref(&flag)).expect("specs");
+        assert_eq!(specs.last().and_then(|s| s.path.clone()), Some(gone.clone()));
+        let clash = DatasetSpec::user("sf2f", &here);
+        let err = dataset_specs(&reports, &root, &[clash]).expect_err("a default's name");
+        assert!(err.to_string().contains("sf2f"), "{err}");
+    }
 }

@@ -6,6 +6,9 @@ use std::path::PathBuf;
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum EvalError {
+    /// A user dataset was given a default dataset's name.
+    #[error("--dataset {0}: that name is a default dataset's")]
+    DefaultName(String),
     /// Reading or writing a file failed.
     #[error("{path}: {source}")]
     Io {

@@ -301,6 +301,31 @@ fn timings(runs: &[Scored]) -> Result<DataFrame, EvalError> {
     .map_err(table_err("timings"))
 }
 
+/// A row's lines of the written flow and segmentation boards in `reports`, one per dataset
+/// (`net: dataset sf2f, epe 0.057, ...`); none where a board is missing or lacks the row.
+pub fn row_lines(reports: &Path, row: &str) -> Vec<String> {
+    let mut lines = Vec::new();
+    for (board, columns) in [
+        ("leaderboard_flow.csv", &["epe", "pcc_0.05", "pcc_0.10"][..]),
+        ("leaderboard_seg.csv", &["ri", "iou", "pairs", "failed"][..]),
+    ] {
+        let Ok(mut reader) = csv::Reader::from_path(reports.join(board)) else { continue };
+        let Ok(header) = reader.headers().cloned() else { continue };
+        let at = |name: &str| header.iter().position(|h| h == name);
+        for record in reader.records().flatten() {
+            if at("method").and_then(|i| record.get(i)) != Some(row) {
+                continue;
+            }
+            let cells: Vec<String> = std::iter::once("dataset")
+                .chain(columns.iter().copied())
+                .filter_map(|c| Some(format!("{c} {}", record.get(at(c)?)?)))
+                .collect();
+            lines.push(format!("{row}: {}", cells.join(", ")));
+        }
+    }
+    lines
+}
+
 impl Leaderboards {
     /// Builds the three tables from every run.
     pub fn build(runs: &[Scored]) -> Result<Self, EvalError> {

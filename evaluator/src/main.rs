@@ -10,8 +10,8 @@ use evaluator::commands::{
     add_remembered_rows, score_predictions, write_predictions, CommandOptions, PredictRequest,
 };
 use evaluator::datasets::{
-    default_datasets, parse_user_dataset, remember_datasets, remembered_datasets,
-    validation_datasets, DatasetSpec,
+    dataset_specs, default_datasets, parse_user_dataset, remember_datasets, validation_datasets,
+    DatasetSpec,
 };
 use evaluator::pipeline::{evaluate, Options, Progress};
 use evaluator::standard::{standard_registry, DEFAULT_WEIGHTS};
@@ -181,19 +181,6 @@ impl Progress for Bars {
     }
 }
 
-/// The default datasets, then the user datasets remembered in `reports` whose folders exist.
-fn known_datasets(reports: &Path, datasets_root: &Path) -> Vec<DatasetSpec> {
-    let mut specs = default_datasets();
-    for spec in remembered_datasets(reports) {
-        if spec.dir(datasets_root).join(pairs::dataset::MANIFEST_FILE).exists()
-            && !specs.iter().any(|s| s.name == spec.name)
-        {
-            specs.push(spec);
-        }
-    }
-    specs
-}
-
 fn registry(weights: &Path) -> Result<evaluator::registry::Registry> {
     standard_registry(weights)
         .with_context(|| format!("building the method registry (weights {})", weights.display()))
@@ -205,7 +192,7 @@ fn run_command(command: Command) -> Result<()> {
     match command {
         Command::Score { dataset, predictions, name, common } => {
             let registry = registry(&common.weights)?;
-            let specs = known_datasets(&common.reports, &common.datasets_root);
+            let specs = dataset_specs(&common.reports, &common.datasets_root, &[])?;
             let setup = CommandOptions {
                 datasets_root: common.datasets_root,
                 reports: common.reports,
@@ -221,7 +208,9 @@ fn run_command(command: Command) -> Result<()> {
                 &bars,
             )
             .with_context(|| format!("scoring {} on {dataset}", predictions.display()))?;
-            print_row(&summary.reports, &row);
+            for line in evaluator::leaderboard::row_lines(&summary.reports, &row) {
+                println!("{line}");
+            }
             eprintln!(
                 "scored {} as {row} in {:.1} s; wrote {}/LEADERBOARD.md",
                 predictions.display(),
@@ -234,7 +223,7 @@ fn run_command(command: Command) -> Result<()> {
             add_remembered_rows(&mut registry, &common.reports).with_context(|| {
                 format!("reading the external rows in {}", common.reports.display())
             })?;
-            let specs = known_datasets(&common.reports, &common.datasets_root);
+            let specs = dataset_specs(&common.reports, &common.datasets_root, &[])?;
             let setup = CommandOptions {
                 datasets_root: common.datasets_root,
                 reports: common.reports,
@@ -255,53 +244,18 @@ fn run_command(command: Command) -> Result<()> {
     Ok(())
 }
 
-/// Prints a row's lines of the flow and segmentation boards.
-fn print_row(reports: &Path, row: &str) {
-    for (board, columns) in [
-        ("leaderboard_flow.csv", &["epe", "pcc_0.05", "pcc_0.10"][..]),
-        ("leaderboard_seg.csv", &["ri", "iou", "pairs", "failed"][..]),
-    ] {
-        let Ok(mut reader) = csv::Reader::from_path(reports.join(board)) else { continue };
-        let Ok(header) = reader.headers().cloned() else { continue };
-        let at = |name: &str| header.iter().position(|h| h == name);
-        for record in reader.records().flatten() {
-            if at("method").and_then(|i| record.get(i)) != Some(row) {
-                continue;
-            }
-            let cells: Vec<String> = std::iter::once("dataset")
-                .chain(columns.iter().copied())
-                .filter_map(|c| Some(format!("{c} {}", record.get(at(c)?)?)))
-                .collect();
-            println!("{row}: {}", cells.join(", "));
-        }
-    }
-}
-
 fn run(args: Args) -> Result<()> {
     if let Some(command) = args.command {
         return run_command(command);
     }
     let mut registry = registry(&args.weights)?;
-    let mut specs = default_datasets();
     let limited = match args.limit {
         Some(n) => args.reports.join(format!("limit-{n}")),
         None => args.reports.clone(),
     };
     add_remembered_rows(&mut registry, &limited)
         .with_context(|| format!("reading the external rows in {}", limited.display()))?;
-    // Datasets scored into these reports before stay in the boards while their folders are
-    // there (they are not rerun unless named with --datasets).
-    let remembered: Vec<DatasetSpec> = remembered_datasets(&limited)
-        .into_iter()
-        .filter(|s| s.dir(&args.datasets_root).join(pairs::dataset::MANIFEST_FILE).exists())
-        .collect();
-    for spec in remembered.into_iter().chain(args.user_datasets.iter().cloned()) {
-        if specs.iter().any(|s| s.name == spec.name && s.config.is_some()) {
-            anyhow::bail!("--dataset {}: that name is a default dataset's", spec.name);
-        }
-        specs.retain(|s| s.name != spec.name);
-        specs.push(spec);
-    }
+    let specs = dataset_specs(&limited, &args.datasets_root, &args.user_datasets)?;
     if args.list {
         println!("rows:");
         for entry in registry.entries() {

@@ -19,8 +19,16 @@ pub fn hash_files(base: &Path, paths: &[PathBuf]) -> String {
 }
 
 /// The evaluator's files whose code changes a row's per-pair numbers (`SOURCE_HASH_SCORING`).
-pub const SCORING: [&str; 6] =
-    ["run.rs", "score.rs", "record.rs", "reference.rs", "tuning.rs", "external.rs"];
+pub const SCORING: [&str; 8] = [
+    "run.rs",
+    "score.rs",
+    "record.rs",
+    "passes.rs",
+    "joints.rs",
+    "reference.rs",
+    "tuning.rs",
+    "external.rs",
+];
 
 #[cfg(test)]
 mod tests {

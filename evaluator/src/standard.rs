@@ -16,11 +16,11 @@ use baselines::{
     SeqRansac, SeqRansacParams, Spectral, SpectralParams,
 };
 use burn::prelude::Device;
-use model::checkpoint::load_weights;
-use model::config::TrainConfig;
+use model::inference::method::NetworkMethod;
 use model::inference::InferenceParams;
-use model::method::NetworkMethod;
-use model::network::PartNet;
+use model::network::PartInductionNet;
+use model::train::checkpoint::load_weights;
+use model::train::config::TrainConfig;
 use pairs::{Method, Segmenter};
 use sha2::{Digest, Sha256};
 
@@ -66,7 +66,7 @@ fn fingerprint(method: &impl Debug) -> String {
 
 /// The network of `weights`; its fingerprint is the sha256 of its config and weights and the
 /// source hash of the code that runs it.
-pub fn load_network(weights: &Path) -> Result<(PartNet, String), EvalError> {
+pub fn load_network(weights: &Path) -> Result<(PartInductionNet, String), EvalError> {
     let (config_path, model_path) = (weights.join("config.toml"), weights.join("model.bpk"));
     let fail = |path: &PathBuf, message: String| EvalError::Weights { path: path.clone(), message };
     let config = TrainConfig::load(&config_path.to_string_lossy())
@@ -95,7 +95,7 @@ fn segmenter<S: Segmenter + Debug + 'static>(segmenter: S) -> (Arc<dyn Segmenter
 }
 
 /// The iterative network row, `net-iter` (the paper's full inference procedure).
-pub fn iterative_network(net: PartNet) -> Arc<NetworkMethod> {
+pub fn iterative_network(net: PartInductionNet) -> Arc<NetworkMethod> {
     Arc::new(NetworkMethod::with_params(ITERATIVE_ROW, net, InferenceParams::iterative()))
 }
 

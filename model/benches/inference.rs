@@ -6,9 +6,9 @@
 use std::path::Path;
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use model::apps::load_network_folder;
 use model::inference::InferenceParams;
-use model::validation::validation_pairs;
+use model::io::commands::load_network_folder;
+use model::train::validation::validation_pairs;
 
 /// jemalloc keeps freed large blocks for reuse (see the workspace's Cargo.toml).
 #[cfg(not(target_env = "msvc"))]

@@ -7,8 +7,8 @@ use burn::prelude::*;
 use criterion::{criterion_group, criterion_main, Criterion};
 use generator::config::GeneratorConfig;
 use generator::stream::TrainingStream;
-use model::config::TrainConfig;
-use model::network::PartNet;
+use model::network::PartInductionNet;
+use model::train::config::TrainConfig;
 use model::train::{batch_gradients, stream_config};
 use pairs::math::Matrix3;
 
@@ -17,7 +17,7 @@ use pairs::math::Matrix3;
 #[global_allocator]
 static ALLOCATOR: tikv_jemallocator::Jemalloc = tikv_jemallocator::Jemalloc;
 
-/// The fused layer norm + ReLU of training (`model::norm`) on one pair tensor's worth of rows
+/// The fused layer norm + ReLU of training (`model::network::norm`) on one pair tensor's worth of rows
 /// (4 pairs x 128 x 128 points, 64 channels).
 fn norm(c: &mut Criterion) {
     let (rows, channels) = (4 * 128 * 128, 64);
@@ -27,15 +27,17 @@ fn norm(c: &mut Criterion) {
     let gamma: Vec<f32> = (0..channels).map(|i| 0.5 + i as f32 / channels as f32).collect();
     let beta: Vec<f32> = (0..channels).map(|i| i as f32 / channels as f32 - 0.5).collect();
     let bias: Vec<f32> = beta.iter().map(|b| b * 0.1).collect();
-    let params = model::norm::Channels { bias: &bias, gamma: &gamma, beta: &beta };
+    let params = model::network::norm::Channels { bias: &bias, gamma: &gamma, beta: &beta };
     let mut group = c.benchmark_group("norm");
     group.sample_size(20);
-    group.bench_function("forward_65536x64", |b| b.iter(|| model::norm::forward(&x, &params)));
+    group.bench_function("forward_65536x64", |b| {
+        b.iter(|| model::network::norm::forward(&x, &params))
+    });
     group.bench_function("backward_65536x64", |b| {
         let mut dx = grad.clone();
         b.iter(|| {
             dx.copy_from_slice(&grad);
-            model::norm::backward(&x, &params, &mut dx)
+            model::network::norm::backward(&x, &params, &mut dx)
         })
     });
     group.finish();
@@ -52,7 +54,7 @@ fn bench(c: &mut Criterion) {
                 .take(8)
                 .collect::<Result<_, _>>()
                 .expect("pairs");
-        let net = PartNet::seeded(&config.network, &Device::flex(), 1);
+        let net = PartInductionNet::seeded(&config.network, &Device::flex(), 1);
         group.bench_function(format!("{name}/predict_n512"), |b| {
             b.iter(|| net.predict(pairs[0].input()).expect("runs"))
         });
@@ -61,7 +63,7 @@ fn bench(c: &mut Criterion) {
         let rotations = vec![Matrix3::identity(); batch_size];
         let batch = &pairs[..batch_size];
         for stage in 1..=3u8 {
-            let mut net = PartNet::seeded(&config.network, &device, 1);
+            let mut net = PartInductionNet::seeded(&config.network, &device, 1);
             let mut optimizer = AdamConfig::new().init();
             // One optimiser step as the trainer takes it: the batch's tensors, the loss (on
             // `replicas` threads), backward and Adam.

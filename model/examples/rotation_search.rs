@@ -6,9 +6,9 @@
 
 use std::path::Path;
 
-use model::apps::load_network_folder;
-use model::rotation_search::COVERING_RADIUS_DEG;
-use model::validation::validation_pairs;
+use model::inference::rotation_search::COVERING_RADIUS_DEG;
+use model::io::commands::load_network_folder;
+use model::train::validation::validation_pairs;
 use pairs::math::{Point3, UnitQuaternion};
 use pairs::transform::rotation_error_deg;
 use pairs::Cloud;

@@ -7,15 +7,15 @@ use anyhow::{Context, Result};
 use burn::prelude::*;
 use clap::{Parser, Subcommand, ValueEnum};
 use indicatif::{ProgressBar, ProgressStyle};
-use model::animation::{write_animation, AnimationParams};
-use model::apps::{
+use model::inference::InferenceParams;
+use model::io::animation::{write_animation, AnimationParams};
+use model::io::commands::{
     describe, input_from_files, load_network_folder, pair_from_dataset, write_segment_plys,
 };
-use model::checkpoint::{load_weights, CheckpointDir};
-use model::config::TrainConfig;
-use model::inference::InferenceParams;
+use model::train::checkpoint::{load_weights, CheckpointDir};
+use model::train::config::TrainConfig;
+use model::train::validation::{score, validation_pairs};
 use model::train::{Budget, RunPaths, Trainer};
-use model::validation::{score, validation_pairs};
 use pairs::{PairInput, Prediction};
 
 #[derive(Parser, Debug)]

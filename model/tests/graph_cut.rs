@@ -4,7 +4,7 @@
 //! clouds a cut can split a label's region (found by this test; e.g. 6 fragments before, 7
 //! after), so that property is checked on a noisy hinge in `labels/hard.rs` instead.
 
-use model::labels::{hard_labels, HardLabelParams};
+use model::inference::labels::{hard_labels, HardLabelParams};
 use pairs::math::{Point3, Vector3};
 use proptest::prelude::*;
 

@@ -5,16 +5,16 @@
 use burn::prelude::*;
 use generator::config::GeneratorConfig;
 use generator::stream::TrainingStream;
-use model::config::TrainConfig;
+use model::inference::method::NetworkMethod;
+use model::inference::rotation_search::{search_candidates, SEARCH_ROTATIONS};
 use model::inference::InferenceParams;
-use model::method::NetworkMethod;
-use model::network::PartNet;
-use model::rotation_search::{search_candidates, SEARCH_ROTATIONS};
+use model::network::PartInductionNet;
+use model::train::config::TrainConfig;
 use model::train::stream_config;
 use pairs::math::Point3;
 use pairs::{Method, Pair};
 
-fn net_and_pair() -> (PartNet, Pair) {
+fn net_and_pair() -> (PartInductionNet, Pair) {
     let config = TrainConfig::built_in("tiny");
     let pair = TrainingStream::new(GeneratorConfig {
         categories: vec!["laptop".into()],
@@ -24,7 +24,7 @@ fn net_and_pair() -> (PartNet, Pair) {
     .next()
     .expect("a pair")
     .expect("generated");
-    (PartNet::seeded(&config.network, &Device::flex(), 5), pair)
+    (PartInductionNet::seeded(&config.network, &Device::flex(), 5), pair)
 }
 
 #[test]

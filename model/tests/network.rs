@@ -5,10 +5,10 @@
 use burn::prelude::*;
 use generator::config::GeneratorConfig;
 use generator::stream::TrainingStream;
-use model::checkpoint::{load_weights, save_weights, CheckpointDir};
-use model::config::TrainConfig;
-use model::network::PartNet;
-use model::sampling::SamplingError;
+use model::network::sampling::SamplingError;
+use model::network::PartInductionNet;
+use model::train::checkpoint::{load_weights, save_weights, CheckpointDir};
+use model::train::config::TrainConfig;
 use model::train::{stream_config, Budget, RunPaths, Trainer};
 use pairs::math::Point3;
 use pairs::{Cloud, Pair, PairInput};
@@ -33,8 +33,8 @@ fn some_pairs(config: &TrainConfig, n: usize) -> Vec<Pair> {
     .expect("pairs")
 }
 
-fn fresh_net(config: &TrainConfig) -> PartNet {
-    PartNet::seeded(&config.network, &Device::flex(), 3)
+fn fresh_net(config: &TrainConfig) -> PartInductionNet {
+    PartInductionNet::seeded(&config.network, &Device::flex(), 3)
 }
 
 fn paths(root: &std::path::Path) -> RunPaths {
@@ -154,7 +154,7 @@ fn the_segmentation_module_on_the_networks_own_flow_predicts_like_the_network() 
 }
 
 /// Every parameter's gradient, in module order (empty for a parameter without one).
-fn gradient_values(net: &PartNet, grads: &burn::optim::GradientsParams) -> Vec<Vec<f32>> {
+fn gradient_values(net: &PartInductionNet, grads: &burn::optim::GradientsParams) -> Vec<Vec<f32>> {
     struct Collect<'a> {
         grads: &'a burn::optim::GradientsParams,
         out: Vec<Vec<f32>>,
@@ -181,7 +181,7 @@ fn two_replicas_sum_the_gradients_of_their_halves_of_the_batch() {
     let pairs = some_pairs(&one, 4);
     let rotations = vec![Matrix3::identity(); 4];
     let device = Device::flex().autodiff();
-    let net = PartNet::seeded(&one.network, &device, 5);
+    let net = PartInductionNet::seeded(&one.network, &device, 5);
     // Stage 3 with the true flow fed for the first and last pair: each shard gets its marks.
     let marks = [true, false, false, true];
     for stage in [1u8, 3] {
@@ -240,7 +240,7 @@ fn a_two_replica_run_is_deterministic_and_resumes_bit_identically() {
 }
 
 /// Every parameter's values, in module order.
-fn parameter_values(net: &PartNet) -> Vec<Vec<f32>> {
+fn parameter_values(net: &PartInductionNet) -> Vec<Vec<f32>> {
     struct Collect(Vec<Vec<f32>>);
     impl burn::module::ModuleVisitor for Collect {
         fn visit_float<const D: usize>(&mut self, param: &burn::module::Param<Tensor<D>>) {
@@ -256,7 +256,7 @@ fn parameter_values(net: &PartNet) -> Vec<Vec<f32>> {
 fn a_run_with_init_weights_starts_from_them() {
     let dir = tempfile::tempdir().expect("a temporary folder");
     let file = dir.path().join("start.bpk");
-    let start = PartNet::seeded(&tiny().network, &Device::flex(), 11);
+    let start = PartInductionNet::seeded(&tiny().network, &Device::flex(), 11);
     save_weights(&start, &file).expect("saved");
     let config = TrainConfig { init_weights: Some(file.clone()), ..tiny() };
     let pairs = some_pairs(&config, 2);
@@ -286,8 +286,8 @@ fn a_run_with_init_weights_starts_from_them() {
 
 #[test]
 fn stage_three_on_the_true_flow_sees_what_stage_two_sees() {
-    use model::batch::TrainingBatch;
-    use model::objective::stage_loss;
+    use model::train::batch::TrainingBatch;
+    use model::train::objective::stage_loss;
     use pairs::math::Matrix3;
     let config = tiny();
     let pairs = some_pairs(&config, 2);

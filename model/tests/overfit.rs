@@ -5,17 +5,22 @@
 use burn::prelude::*;
 use generator::config::GeneratorConfig;
 use generator::stream::TrainingStream;
-use model::batch::TrainingBatch;
-use model::checkpoint::CheckpointDir;
-use model::config::TrainConfig;
-use model::network::PartNet;
-use model::objective::stage_loss;
+use model::network::PartInductionNet;
+use model::train::batch::TrainingBatch;
+use model::train::checkpoint::CheckpointDir;
+use model::train::config::TrainConfig;
+use model::train::objective::stage_loss;
+use model::train::validation::score;
 use model::train::{stream_config, Budget, RunPaths, Trainer};
-use model::validation::score;
 use pairs::math::Matrix3;
 use pairs::Pair;
 
-fn full_objective(net: &PartNet, pairs: &[Pair], config: &TrainConfig, device: &Device) -> f32 {
+fn full_objective(
+    net: &PartInductionNet,
+    pairs: &[Pair],
+    config: &TrainConfig,
+    device: &Device,
+) -> f32 {
     let rotations = vec![Matrix3::identity(); pairs.len()];
     let batch = TrainingBatch::new(pairs, &rotations, &config.network, device).expect("a batch");
     stage_loss(net, &batch, 3, false, &[]).expect("a loss").0.into_scalar::<f32>()

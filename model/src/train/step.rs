@@ -13,12 +13,12 @@ use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 use rayon::prelude::*;
 
-use crate::batch::TrainingBatch;
-use crate::config::TrainConfig;
-use crate::log::StepPhases;
-use crate::network::PartNet;
-use crate::objective::{stage_loss, LossTerms};
-use crate::sampling::SamplingError;
+use crate::network::sampling::SamplingError;
+use crate::network::PartInductionNet;
+use crate::train::batch::TrainingBatch;
+use crate::train::config::TrainConfig;
+use crate::train::log::StepPhases;
+use crate::train::objective::{stage_loss, LossTerms};
 
 /// The augmentation rotation of pair `index` of step `step`: a uniformly random axis and an
 /// angle uniform in `[0, max_deg]`.
@@ -59,7 +59,7 @@ pub(super) fn fed_true_flow(config: &TrainConfig, step: u64, index: usize) -> bo
 /// apart), each shard's loss weighted by its share of the batch, and the gradients summed
 /// in shard order (the same sum whatever the machine's thread count).
 pub fn batch_gradients(
-    net: &PartNet,
+    net: &PartInductionNet,
     config: &TrainConfig,
     device: &Device,
     pairs: &[Pair],
@@ -70,7 +70,11 @@ pub fn batch_gradients(
     let shards = config.replicas.clamp(1, pairs.len().max(1));
     // One shard: its batch, forward pass and loss, and backward pass (the loss scaled by
     // `share`), each timed.
-    let run = |net: &PartNet, pairs: &[Pair], rotations: &[Matrix3], marks: &[bool], share: f32| {
+    let run = |net: &PartInductionNet,
+               pairs: &[Pair],
+               rotations: &[Matrix3],
+               marks: &[bool],
+               share: f32| {
         let mut phases = StepPhases::default();
         let clock = Instant::now();
         let batch = TrainingBatch::new(pairs, rotations, &config.network, device)?;
@@ -109,7 +113,7 @@ pub fn batch_gradients(
             })
             .collect()
     });
-    let mut accumulator = GradientsAccumulator::<PartNet>::new();
+    let mut accumulator = GradientsAccumulator::<PartInductionNet>::new();
     let (mut value, mut terms, mut phases) = (0.0, LossTerms::default(), StepPhases::default());
     for result in results {
         let (v, t, grads, p) = result?;

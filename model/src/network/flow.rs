@@ -3,10 +3,10 @@
 
 use burn::prelude::*;
 
-use crate::backbone::Backbone;
-use crate::config::NetworkConfig;
-use crate::pointnet::SharedMlp;
-use crate::sampling::SamplingError;
+use crate::network::backbone::Backbone;
+use crate::network::config::NetworkConfig;
+use crate::network::pointnet::SharedMlp;
+use crate::network::sampling::SamplingError;
 
 /// The flow module.
 #[derive(Module, Debug)]

@@ -6,8 +6,8 @@ use burn::tensor::TensorData;
 use pairs::math::{Matrix3, Point3, Vector3};
 use pairs::{Pair, PairInput};
 
-use crate::config::NetworkConfig;
-use crate::sampling::{distance2, farthest_point_sampling, SamplingError};
+use crate::network::sampling::{distance2, farthest_point_sampling, SamplingError};
+use crate::train::config::NetworkConfig;
 
 /// A pair's clouds as plain points, optionally rotated, with their farthest-point subsets.
 #[derive(Debug, Clone)]

@@ -6,10 +6,10 @@ use burn::nn::Linear;
 use burn::prelude::*;
 use burn::tensor::activation;
 
-use crate::backbone::Backbone;
-use crate::config::NetworkConfig;
-use crate::pointnet::{linear, relu_layer, Head, SharedMlp};
-use crate::sampling::SamplingError;
+use crate::network::backbone::Backbone;
+use crate::network::config::NetworkConfig;
+use crate::network::pointnet::{linear, relu_layer, Head, SharedMlp};
+use crate::network::sampling::SamplingError;
 
 /// What the module outputs for a batch of pairs.
 #[derive(Debug, Clone)]

@@ -26,10 +26,10 @@ use burn::tensor::activation;
 use pairs::math::{Matrix3, Real, UnitQuaternion};
 use pairs::PairInput;
 
-use crate::batch::{points_tensor, Prepared};
-use crate::network::PartNet;
-use crate::predict::floats;
-use crate::sampling::SamplingError;
+use crate::network::predict::floats;
+use crate::network::sampling::SamplingError;
+use crate::network::PartInductionNet;
+use crate::train::batch::{points_tensor, Prepared};
 
 /// Points of the subsets the search scores candidates on.
 pub const SEARCH_POINTS: usize = 64;
@@ -89,7 +89,7 @@ pub struct RotationSearch {
     pub magnitudes: Vec<Real>,
 }
 
-impl PartNet {
+impl PartInductionNet {
     /// Mean flow magnitude on P's correspondence subset for each rotation of P, in one
     /// batch. (Farthest-point sampling depends only on distances, so P's subset rotated is
     /// the rotated P's subset.)

@@ -6,10 +6,10 @@
 use burn::prelude::*;
 use serde::{Deserialize, Serialize};
 
-use crate::pointnet::{
+use crate::network::pointnet::{
     FeaturePropagation, GlobalAbstraction, Head, SetAbstraction, SetAbstractionConfig, SharedMlp,
 };
-use crate::sampling::SamplingError;
+use crate::network::sampling::SamplingError;
 
 /// Sizes of a [`Backbone`].
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -31,7 +31,7 @@ impl BackboneConfig {
     ///
     /// Panics if there are no levels or `propagation` does not hold one entry per level plus
     /// one; configs are
-    /// checked by [`crate::config::NetworkConfig::validate`] before they get here.
+    /// checked by [`crate::network::config::NetworkConfig::validate`] before they get here.
     pub fn init(
         &self,
         features: usize,
@@ -133,7 +133,7 @@ impl Backbone {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::pointnet::GroupScale;
+    use crate::network::pointnet::GroupScale;
     use burn::tensor::{Distribution, TensorData};
 
     fn config() -> BackboneConfig {

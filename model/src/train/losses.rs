@@ -1,7 +1,7 @@
 //! The paper's training losses ("Multi-task objective function") as pure tensor functions.
 //! Each returns a scalar tensor (shape `[1]`) averaged over the pairs of the batch; the
 //! weights of the paper (λ_a = λ_b = λ_c = λ_d = 1, λ_e = 0.5, λ_f = λ_g = 1) are applied by
-//! the caller ([`crate::objective`]).
+//! the caller ([`crate::train::objective`]).
 
 use burn::prelude::*;
 use burn::tensor::{activation, Bool, TensorData};

@@ -11,8 +11,8 @@ use serde::{Deserialize, Serialize};
 
 use pairs::atomic::{at, replace_with, FileError};
 
-use crate::config::{NetworkConfig, TrainConfig};
-use crate::network::PartNet;
+use crate::network::PartInductionNet;
+use crate::train::config::{NetworkConfig, TrainConfig};
 
 /// The best validation scores so far and when they were reached.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -100,7 +100,7 @@ fn record(path: &Path) -> impl FnOnce(burn::store::RecordError) -> CheckpointErr
 }
 
 /// Writes the network's weights to `path` (burn's record format), whole or not at all.
-pub fn save_weights(net: &PartNet, path: &Path) -> Result<(), CheckpointError> {
+pub fn save_weights(net: &PartInductionNet, path: &Path) -> Result<(), CheckpointError> {
     replace_with(path, |tmp| net.clone().into_record().save(tmp).map_err(record(tmp)))
 }
 
@@ -109,9 +109,9 @@ pub fn load_weights(
     config: &NetworkConfig,
     path: &Path,
     device: &Device,
-) -> Result<PartNet, CheckpointError> {
+) -> Result<PartInductionNet, CheckpointError> {
     let rec = ModuleRecord::load(path).map_err(record(path))?;
-    let net = PartNet::new(config, device);
+    let net = PartInductionNet::new(config, device);
     net.try_load_record(rec).map_err(record(path))
 }
 
@@ -168,7 +168,7 @@ impl CheckpointDir {
         config: &NetworkConfig,
         optimizer: ModuleOptimizer,
         device: &Device,
-    ) -> Result<(PartNet, ModuleOptimizer), CheckpointError> {
+    ) -> Result<(PartInductionNet, ModuleOptimizer), CheckpointError> {
         let net = load_weights(config, &self.model(), device)?;
         let path = self.optimizer();
         let optimizer = optimizer.load(&path).map_err(record(&path))?;
@@ -179,7 +179,7 @@ impl CheckpointDir {
     /// complete exactly when its state names it.
     pub fn save(
         &self,
-        net: &PartNet,
+        net: &PartInductionNet,
         optimizer: &ModuleOptimizer,
         state: &TrainState,
     ) -> Result<(), CheckpointError> {

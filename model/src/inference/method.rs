@@ -7,7 +7,7 @@ use pairs::math::Vector3;
 use pairs::{Method, MethodError, PairInput, Prediction, Segmenter};
 
 use crate::inference::{Inference, InferenceParams};
-use crate::network::PartNet;
+use crate::network::PartInductionNet;
 
 /// The network for the evaluator: as a [`Method`], the inference procedure with its
 /// parameters (one pass for `net`, the iterative refinement for `net-iter`); as a
@@ -19,17 +19,21 @@ use crate::network::PartNet;
 pub struct NetworkMethod {
     name: String,
     params: InferenceParams,
-    nets: Vec<Mutex<PartNet>>,
+    nets: Vec<Mutex<PartInductionNet>>,
 }
 
 impl NetworkMethod {
     /// Wraps a network (on any device) under a leaderboard name, as a single pass.
-    pub fn new(name: impl Into<String>, net: PartNet) -> Self {
+    pub fn new(name: impl Into<String>, net: PartInductionNet) -> Self {
         Self::with_params(name, net, InferenceParams::single_pass())
     }
 
     /// Wraps a network with the given inference parameters.
-    pub fn with_params(name: impl Into<String>, net: PartNet, params: InferenceParams) -> Self {
+    pub fn with_params(
+        name: impl Into<String>,
+        net: PartInductionNet,
+        params: InferenceParams,
+    ) -> Self {
         let copies = rayon::current_num_threads().max(1);
         let nets = (0..copies).map(|_| Mutex::new(net.clone())).collect();
         Self { name: name.into(), params, nets }
@@ -37,7 +41,7 @@ impl NetworkMethod {
 
     /// The copy of the network for the calling thread (rayon worker `i` gets copy `i`, any
     /// other thread copy 0).
-    fn net(&self) -> MutexGuard<'_, PartNet> {
+    fn net(&self) -> MutexGuard<'_, PartInductionNet> {
         let i = rayon::current_thread_index().unwrap_or(0) % self.nets.len();
         self.nets[i].lock().unwrap_or_else(PoisonError::into_inner)
     }

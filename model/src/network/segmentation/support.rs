@@ -5,9 +5,9 @@
 
 use burn::prelude::*;
 
-use crate::config::NetworkConfig;
-use crate::hypotheses::Hypotheses;
-use crate::pointnet::{Head, SharedMlp};
+use crate::network::config::NetworkConfig;
+use crate::network::pointnet::{Head, SharedMlp};
+use crate::network::segmentation::hypotheses::Hypotheses;
 
 /// The support network.
 #[derive(Module, Debug)]

@@ -4,10 +4,10 @@
 
 use burn::prelude::*;
 
-use crate::backbone::Backbone;
-use crate::config::NetworkConfig;
-use crate::rotation::{project_to_rotation, ITERATIONS};
-use crate::sampling::SamplingError;
+use crate::network::backbone::Backbone;
+use crate::network::config::NetworkConfig;
+use crate::network::rotation::{project_to_rotation, ITERATIONS};
+use crate::network::sampling::SamplingError;
 
 /// Rigid-motion hypotheses, one per point.
 #[derive(Debug, Clone)]

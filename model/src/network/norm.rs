@@ -1,7 +1,7 @@
 //! A shared-MLP layer's bias, layer normalisation and ReLU as one operation with its own
 //! backward pass, for training on the CPU (the flex backend).
 //!
-//! Every layer of a [`crate::pointnet::SharedMlp`] is `Linear`, layer norm, ReLU. burn's
+//! Every layer of a [`crate::network::pointnet::SharedMlp`] is `Linear`, layer norm, ReLU. burn's
 //! autodiff records the bias as a broadcast addition, layer norm as the nine tensor
 //! operations it is made of (mean, centre, square, mean, add, square root, divide, scale,
 //! shift) and ReLU as one more, so a layer on a pair tensor of 16-67 MB made about eleven
@@ -34,7 +34,7 @@ use burn::tensor::{activation, DType, TensorData};
 use burn_flex::FlexTensor;
 use rayon::prelude::*;
 
-use crate::pointnet::linear;
+use crate::network::pointnet::linear;
 
 /// `LayerNormConfig`'s default ε, which every layer of the network uses (a test checks the
 /// two agree).

@@ -16,16 +16,24 @@ use generator::stream::TrainingStream;
 use pairs::math::Matrix3;
 use pairs::Pair;
 
-use crate::checkpoint::{
+use crate::network::sampling::SamplingError;
+use crate::network::PartInductionNet;
+use crate::train::checkpoint::{
     load_weights, save_weights, Best, CheckpointDir, CheckpointError, TrainState,
 };
-use crate::config::TrainConfig;
-use crate::log::{Log, LogError, StepRow, ValidationRow};
-use crate::network::PartNet;
-use crate::sampling::SamplingError;
-use crate::validation::{score, validation_pairs, ScoreError};
+use crate::train::config::TrainConfig;
+use crate::train::log::{Log, LogError, StepRow, ValidationRow};
+use crate::train::validation::{score, validation_pairs, ScoreError};
 
+pub mod batch;
+pub mod checkpoint;
+pub mod config;
+pub mod log;
+pub mod losses;
+pub mod objective;
+pub mod plot;
 mod step;
+pub mod validation;
 
 pub use step::batch_gradients;
 use step::{augmentation, fed_true_flow};
@@ -146,7 +154,7 @@ pub struct Trainer {
     config: TrainConfig,
     paths: RunPaths,
     device: Device,
-    net: PartNet,
+    net: PartInductionNet,
     optimizer: ModuleOptimizer,
     state: TrainState,
     source: Source,
@@ -208,7 +216,7 @@ impl Trainer {
                         tracing::info!(weights = %path.display(), "starting from weights");
                         load_weights(&config.network, path, &device)?
                     }
-                    None => PartNet::seeded(&config.network, &device, config.seed),
+                    None => PartInductionNet::seeded(&config.network, &device, config.seed),
                 };
                 let state = TrainState {
                     config: config.clone(),
@@ -240,7 +248,7 @@ impl Trainer {
     }
 
     /// The network being trained.
-    pub fn network(&self) -> &PartNet {
+    pub fn network(&self) -> &PartInductionNet {
         &self.net
     }
 

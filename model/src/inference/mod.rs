@@ -3,14 +3,20 @@
 //! deformed piecewise rigidly by those motions into P', the correspondence and flow modules
 //! run on (P', Q) for a residual flow f', the refined flow `P' - P + f'` is segmented again,
 //! and so on until the flow changes by less than a tolerance or after 10 iterations. An
-//! optional rotation search ([`crate::rotation_search`]) picks P's initial orientation.
+//! optional rotation search ([`rotation_search`]) picks P's initial orientation. [`labels`]
+//! turns soft segments into hard labels (graph cut, fragment merging, per-segment motions,
+//! Q's labels), and [`method`] is the network as the evaluator's method and segmenter.
+
+pub mod labels;
+pub mod method;
+pub mod rotation_search;
 
 use pairs::math::{Matrix3, Point3, Real, Vector3};
 use pairs::{PairInput, Prediction};
 
-use crate::labels::{segment_pair, HardLabelParams};
-use crate::network::PartNet;
-use crate::sampling::SamplingError;
+use crate::inference::labels::{segment_pair, HardLabelParams};
+use crate::network::sampling::SamplingError;
+use crate::network::PartInductionNet;
 
 /// Parameters of the inference procedure.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -107,7 +113,7 @@ fn nearest(cloud: &[Point3], x: &Point3) -> usize {
         .unwrap_or(0)
 }
 
-impl PartNet {
+impl PartInductionNet {
     /// The network's flow from Q to itself, on Q's points (ideally zero).
     pub fn null_flow(&self, input: &PairInput) -> Result<Vec<Vector3>, SamplingError> {
         let mut same = input.clone();

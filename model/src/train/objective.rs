@@ -5,12 +5,12 @@
 
 use burn::prelude::*;
 
-use crate::batch::TrainingBatch;
-use crate::losses::{
+use crate::network::sampling::SamplingError;
+use crate::network::PartInductionNet;
+use crate::train::batch::TrainingBatch;
+use crate::train::losses::{
     continuation_loss, correspondence_loss, flow_loss, motion_loss, segment_loss, support_loss,
 };
-use crate::network::PartNet;
-use crate::sampling::SamplingError;
 
 /// Weight of the support loss `L_e` (the paper's λ_e); every other weight is 1.
 pub const SUPPORT_WEIGHT: f32 = 0.5;
@@ -110,7 +110,7 @@ fn mix_true_flow(predicted: Tensor<3>, truth: Tensor<3>, true_flow: &[bool]) -> 
 /// `true_flow` marks (by batch index; missing entries are `false`) feed the segmentation
 /// module the ground-truth flow instead of the predicted one.
 pub fn stage_loss(
-    net: &PartNet,
+    net: &PartInductionNet,
     batch: &TrainingBatch,
     stage: u8,
     end_to_end: bool,

@@ -1,4 +1,5 @@
-//! Network sizes and training settings, read from TOML (`model/configs/<name>.toml`).
+//! Training settings ([`TrainConfig`], with the network's sizes in its `network` table),
+//! read from TOML (`model/configs/<name>.toml`).
 //!
 //! Three configs ship with the crate and are built in by name: `paper` (the sizes of the
 //! authors' release, see DESIGN.md), `cpu` (narrower layers and smaller subsets, for
@@ -8,134 +9,8 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
-use crate::backbone::BackboneConfig;
-
-/// Sizes of the whole network.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct NetworkConfig {
-    /// Farthest-point subset of each cloud the correspondence and flow modules work on.
-    pub corr_points: usize,
-    /// Farthest-point subset of P (a prefix of the correspondence subset) the segmentation
-    /// module works on.
-    pub seg_points: usize,
-    /// Most segments the recurrent part extraction network produces.
-    pub max_segments: usize,
-    /// Channels of the per-point features of the correspondence module.
-    pub feature_dim: usize,
-    /// Feature extractor, shared by P and Q.
-    pub features: BackboneConfig,
-    /// Pairwise MLP widths on (feature of p_i, feature of q_j).
-    pub pair: Vec<usize>,
-    /// Hidden widths of the matching-score head (then one logit per pair).
-    pub score: Vec<usize>,
-    /// Hidden widths of the correspondence-mask head on the pair features pooled over Q.
-    pub mask: Vec<usize>,
-    /// PointNet widths on (q_j - p_i, matching probability) before pooling over Q.
-    pub flow_pair: Vec<usize>,
-    /// PointNet++ on P's positions and pooled pair features, ending in the flow.
-    pub flow: BackboneConfig,
-    /// PointNet++ on P's centred positions and flow, ending in 12 motion parameters.
-    pub hypothesis: BackboneConfig,
-    /// Support network: per (hypothesis, point) MLP widths before pooling.
-    pub support_local: Vec<usize>,
-    /// Support network: MLP widths on the pooled feature of each hypothesis.
-    pub support_global: Vec<usize>,
-    /// Support network: hidden widths of the head on (local, global), then one logit.
-    pub support_head: Vec<usize>,
-    /// RPEN: PointNet widths on (support, memory) per hypothesis row before pooling.
-    pub rpen_pair: Vec<usize>,
-    /// RPEN: widths of the global MLP over hypotheses (positions and row features).
-    pub rpen_global: Vec<usize>,
-    /// RPEN: widths of the per-hypothesis state `z_t` from (row feature, global).
-    pub rpen_state: Vec<usize>,
-    /// RPEN: hidden widths of the continuation and hypothesis-weight heads.
-    pub rpen_head: Vec<usize>,
-}
-
-/// What is wrong with a config.
-#[derive(Debug, thiserror::Error)]
-pub enum ConfigError {
-    /// The file could not be read.
-    #[error("cannot read config {path}: {source}")]
-    Read {
-        /// The file.
-        path: String,
-        /// The I/O error.
-        #[source]
-        source: std::io::Error,
-    },
-    /// The file is not valid TOML for a config.
-    #[error("config {path} is not a valid training config: {source}")]
-    Parse {
-        /// The file (or built-in name).
-        path: String,
-        /// The parser's error, which names the field.
-        #[source]
-        source: Box<toml::de::Error>,
-    },
-    /// A value is out of range.
-    #[error("config field `{field}`: {problem}")]
-    Invalid {
-        /// The field.
-        field: &'static str,
-        /// What is wrong.
-        problem: String,
-    },
-}
-
-fn invalid(field: &'static str, problem: impl Into<String>) -> ConfigError {
-    ConfigError::Invalid { field, problem: problem.into() }
-}
-
-impl NetworkConfig {
-    /// Checks sizes that would otherwise fail deep inside a forward pass.
-    pub fn validate(&self) -> Result<(), ConfigError> {
-        if self.seg_points == 0 || self.seg_points > self.corr_points {
-            return Err(invalid("network.seg_points", "must be in 1..=corr_points"));
-        }
-        if self.max_segments < 1 {
-            return Err(invalid("network.max_segments", "must be at least 1"));
-        }
-        for (field, widths) in [
-            ("network.pair", &self.pair),
-            ("network.flow_pair", &self.flow_pair),
-            ("network.support_local", &self.support_local),
-            ("network.rpen_pair", &self.rpen_pair),
-            ("network.rpen_global", &self.rpen_global),
-            ("network.rpen_state", &self.rpen_state),
-        ] {
-            if widths.is_empty() || widths.contains(&0) {
-                return Err(invalid(field, "needs at least one layer, all widths positive"));
-            }
-        }
-        for (field, backbone, points) in [
-            ("network.features", &self.features, self.corr_points),
-            ("network.flow", &self.flow, self.corr_points),
-            ("network.hypothesis", &self.hypothesis, self.corr_points),
-        ] {
-            if backbone.levels.is_empty() {
-                return Err(invalid(field, "needs at least one set abstraction level"));
-            }
-            if backbone.propagation.len() != backbone.levels.len() + 1 {
-                return Err(invalid(field, "needs one propagation entry per level, plus one"));
-            }
-            let mut available = points;
-            for level in &backbone.levels {
-                if level.centres < 3 || level.centres > available || level.scales.is_empty() {
-                    return Err(invalid(
-                        field,
-                        format!(
-                            "level centres must be in 3..={available} (the points it receives) with at least one scale"
-                        ),
-                    ));
-                }
-                available = level.centres;
-            }
-        }
-        Ok(())
-    }
-}
+use crate::network::config::invalid;
+pub use crate::network::config::{ConfigError, NetworkConfig};
 
 /// Points of P and Q per training pair, and how the trainer feeds and schedules them.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -202,7 +77,7 @@ pub struct TrainConfig {
     /// Seed of the training stream and the augmentation.
     pub seed: u64,
     /// Pairs in the fixed validation set (validation categories; a quarter each of SF2P and
-    /// SP2P pairs when the stream trains on scans, see [`crate::validation::validation_pairs`]).
+    /// SP2P pairs when the stream trains on scans, see [`crate::train::validation::validation_pairs`]).
     pub validation_pairs: u32,
     /// Data-parallel replicas of a step: the batch is split into this many equal shards,
     /// each run forward and backward on its own thread, and their gradients are summed (each
@@ -243,9 +118,9 @@ fn one() -> usize {
 
 /// The configs built into the crate, by name.
 pub const BUILT_IN: [(&str, &str); 3] = [
-    ("paper", include_str!("../configs/paper.toml")),
-    ("cpu", include_str!("../configs/cpu.toml")),
-    ("tiny", include_str!("../configs/tiny.toml")),
+    ("paper", include_str!("../../configs/paper.toml")),
+    ("cpu", include_str!("../../configs/cpu.toml")),
+    ("tiny", include_str!("../../configs/tiny.toml")),
 ];
 
 impl TrainConfig {

@@ -6,9 +6,9 @@ use std::fs::File;
 use std::io::{BufRead, BufReader, BufWriter, Write};
 use std::path::{Path, PathBuf};
 
-use crate::objective::{LossTerms, TERM_NAMES};
-use crate::plot::{draw_loss_curves, Curves};
-use crate::validation::Scores;
+use crate::train::objective::{LossTerms, TERM_NAMES};
+use crate::train::plot::{draw_loss_curves, Curves};
+use crate::train::validation::Scores;
 use pairs::atomic::{at, partial_path, replace_file, FileError};
 
 /// One optimiser step.

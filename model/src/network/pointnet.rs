@@ -2,7 +2,7 @@
 //! grouping (one or several radii) or global pooling, and feature propagation by 3-NN
 //! inverse-distance interpolation.
 //!
-//! Sampling and grouping indices come from [`crate::sampling`] on the points' values, with
+//! Sampling and grouping indices come from [`crate::network::sampling`] on the points' values, with
 //! no gradient; grouping itself is a gather (`select`) on the tensors, so gradients reach
 //! every grouped point and feature.
 //!
@@ -14,8 +14,8 @@ use burn::nn::{Initializer, LayerNorm, LayerNormConfig, Linear, LinearConfig};
 use burn::prelude::*;
 use burn::tensor::TensorData;
 
-use crate::norm::linear_norm_relu;
-use crate::sampling::{ball_query, farthest_point_sampling, three_nn, SamplingError};
+use crate::network::norm::linear_norm_relu;
+use crate::network::sampling::{ball_query, farthest_point_sampling, three_nn, SamplingError};
 
 /// A `Linear` layer that feeds a ReLU, initialised after He et al. (variance `2 / fan_in`)
 /// so that activations keep their scale through deep stacks without batch normalisation

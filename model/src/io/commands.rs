@@ -13,11 +13,11 @@ use pairs::math::Point3;
 use pairs::transform::rotation_angle_deg;
 use pairs::{Cloud, JointKind, Pair, PairInput, PairKind, Prediction};
 
-use crate::checkpoint::{load_weights, CheckpointError};
-use crate::config::{ConfigError, TrainConfig};
-use crate::network::PartNet;
-use crate::pointfile::{read_points, write_ply, PointFileError};
-use crate::sampling::{farthest_point_sampling, SamplingError};
+use crate::io::pointfile::{read_points, write_ply, PointFileError};
+use crate::network::sampling::{farthest_point_sampling, SamplingError};
+use crate::network::PartInductionNet;
+use crate::train::checkpoint::{load_weights, CheckpointError};
+use crate::train::config::{ConfigError, TrainConfig};
 
 /// Why an application step failed.
 #[derive(Debug, thiserror::Error)]
@@ -65,7 +65,7 @@ pub enum AppError {
 }
 
 /// The network of a weights folder (`config.toml` and `model.bpk`), on the CPU.
-pub fn load_network_folder(dir: &Path) -> Result<PartNet, AppError> {
+pub fn load_network_folder(dir: &Path) -> Result<PartInductionNet, AppError> {
     let config_path = dir.join("config.toml");
     let config = TrainConfig::load(&config_path.to_string_lossy())
         .map_err(|source| AppError::Config { path: config_path.clone(), source })?;

@@ -8,8 +8,8 @@
 use burn::prelude::*;
 use burn::tensor::activation;
 
-use crate::config::NetworkConfig;
-use crate::pointnet::{Head, SharedMlp};
+use crate::network::config::NetworkConfig;
+use crate::network::pointnet::{Head, SharedMlp};
 
 /// What the RPEN outputs for `steps` steps.
 #[derive(Debug, Clone)]

@@ -1,20 +1,37 @@
-//! The whole network: correspondence proposal, flow, and the segmentation module
-//! (hypotheses, support, RPEN), as one burn module with one forward per training stage.
+//! The network of the paper, [`PartInductionNet`]: correspondence proposal ([`correspondence`],
+//! 4.1), flow ([`flow`], 4.2) and the [`segmentation`] module (hypotheses, support, RPEN;
+//! 4.3), as one burn module with one forward per training stage; [`predict`] is its single
+//! forward pass on a pair. Below them: [`sampling`] (farthest-point samples, ball
+//! neighbourhoods and 3-NN weights as plain indices), [`pointnet`] (the PointNet++ layers
+//! that gather by those indices, [`norm`] fusing a layer's bias, layer norm and ReLU when
+//! training on the CPU), the [`backbone`] they build, and [`rotation`], the differentiable
+//! projection onto rotations. [`config`] holds every size.
+
+pub mod backbone;
+pub mod config;
+pub mod correspondence;
+pub mod flow;
+pub mod norm;
+pub mod pointnet;
+pub mod predict;
+pub mod rotation;
+pub mod sampling;
+pub mod segmentation;
 
 use burn::prelude::*;
 use burn::tensor::activation;
 
-use crate::config::NetworkConfig;
-use crate::correspondence::{Correspondence, CorrespondenceModule};
-use crate::flow::FlowModule;
-use crate::hypotheses::{Hypotheses, HypothesisModule};
-use crate::rpen::{RpenModule, Segments};
-use crate::sampling::SamplingError;
-use crate::support::SupportModule;
+use crate::network::config::NetworkConfig;
+use crate::network::correspondence::{Correspondence, CorrespondenceModule};
+use crate::network::flow::FlowModule;
+use crate::network::sampling::SamplingError;
+use crate::network::segmentation::hypotheses::{Hypotheses, HypothesisModule};
+use crate::network::segmentation::rpen::{RpenModule, Segments};
+use crate::network::segmentation::support::SupportModule;
 
-/// The network of Yi et al. 2018.
+/// The network of Yi et al. 2018, "Deep Part Induction from Articulated Object Pairs".
 #[derive(Module, Debug)]
-pub struct PartNet {
+pub struct PartInductionNet {
     correspondence: CorrespondenceModule,
     flow: FlowModule,
     hypotheses: HypothesisModule,
@@ -48,7 +65,7 @@ pub struct SegmentationOutput {
     pub segments: Option<Segments>,
 }
 
-impl PartNet {
+impl PartInductionNet {
     /// A freshly initialised network with `config`'s sizes (weights from burn's default
     /// initialisers, seeded by the device's RNG).
     pub fn new(config: &NetworkConfig, device: &Device) -> Self {

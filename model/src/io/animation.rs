@@ -12,7 +12,7 @@ use pairs::screw::interpolate_screw;
 use pairs::transform::Similarity;
 use serde_json::{json, Value};
 
-use crate::pointfile::PointFileError;
+use crate::io::pointfile::PointFileError;
 
 /// Keyframes of the animation and its length.
 #[derive(Debug, Clone, Copy, PartialEq)]

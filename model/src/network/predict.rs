@@ -1,10 +1,10 @@
 //! One forward pass on a pair: the flow and correspondence mask interpolated from the
-//! correspondence subset to every point of P ([`PartNet::flow_pass`]), and the segmentation
-//! module's soft segment probabilities on every point ([`PartNet::soft_segments`]: RPEN
-//! steps until the continuation score drops below one half). [`PartNet::predict`] turns them
+//! correspondence subset to every point of P ([`PartInductionNet::flow_pass`]), and the segmentation
+//! module's soft segment probabilities on every point ([`PartInductionNet::soft_segments`]: RPEN
+//! steps until the continuation score drops below one half). [`PartInductionNet::predict`] turns them
 //! into the raw network's [`Prediction`] (argmax labels), as the trainer validates it; the
 //! whole inference procedure (graph cut, iterations, rotation search) is
-//! [`PartNet::infer`] in [`crate::inference`].
+//! [`PartInductionNet::infer`] in [`crate::inference`].
 
 use burn::prelude::*;
 use burn::tensor::activation;
@@ -12,10 +12,10 @@ use pairs::math::{Matrix3, Vector3};
 use pairs::segments::complete_prediction;
 use pairs::{PairInput, Prediction};
 
-use crate::batch::{points_tensor, Prepared};
-use crate::labels::{segment_pair, HardLabelParams};
-use crate::network::PartNet;
-use crate::sampling::{three_nn, SamplingError};
+use crate::inference::labels::{segment_pair, HardLabelParams};
+use crate::network::sampling::{three_nn, SamplingError};
+use crate::network::PartInductionNet;
+use crate::train::batch::{points_tensor, Prepared};
 
 /// A tensor's values as f32.
 pub(crate) fn floats<const D: usize>(t: Tensor<D>) -> Vec<f32> {
@@ -51,7 +51,7 @@ struct SegmentationInput {
     flow: Tensor<3>,
 }
 
-impl PartNet {
+impl PartInductionNet {
     /// The device the network's parameters live on.
     pub(crate) fn device(&self) -> Device {
         self.devices().into_iter().next().unwrap_or_else(Device::flex)
@@ -131,7 +131,7 @@ impl PartNet {
     /// The raw network's single pass, as the trainer validates it: [`Self::flow_pass`],
     /// [`Self::soft_segments`], labels by argmax, one motion per segment and Q labelled
     /// by its nearest moved point (`pairs::segments`). No calibration and no graph cut: the
-    /// evaluator's `net` row is [`PartNet::infer`] with
+    /// evaluator's `net` row is [`PartInductionNet::infer`] with
     /// [`InferenceParams::single_pass`](crate::inference::InferenceParams::single_pass).
     pub fn predict(&self, input: &PairInput) -> Result<Prediction, SamplingError> {
         let (flow, mask) = self.flow_pass(input)?;

@@ -12,8 +12,8 @@ use pairs::metrics::{epe, matched_iou, rand_index};
 use pairs::PairKind;
 use pairs::{Pair, PartId};
 
-use crate::network::PartNet;
-use crate::sampling::SamplingError;
+use crate::network::sampling::SamplingError;
+use crate::network::PartInductionNet;
 
 /// Seed of the validation pairs; fixed so that every run is scored on the same pairs.
 pub const VALIDATION_SEED: u64 = 20_181_201;
@@ -94,7 +94,7 @@ pub enum ScoreError {
 }
 
 /// Scores the network's single-pass predictions on `pairs`.
-pub fn score(net: &PartNet, pairs: &[Pair]) -> Result<Scores, ScoreError> {
+pub fn score(net: &PartInductionNet, pairs: &[Pair]) -> Result<Scores, ScoreError> {
     let (mut epe_sum, mut ri_sum, mut iou_sum, mut parts) = (0.0, 0.0, 0.0, 0usize);
     let mut support_sum = 0.0;
     for pair in pairs {
@@ -130,7 +130,7 @@ pub fn score(net: &PartNet, pairs: &[Pair]) -> Result<Scores, ScoreError> {
 /// of the part of `i`, averaged over hypotheses. 1 when every hypothesis supports exactly its
 /// part; a module that supports everything scores the mean fraction of the subset in a
 /// point's part. `probs` holds `parts.len()` squared values, row-major, as
-/// [`PartNet::supports`] returns them.
+/// [`PartInductionNet::supports`] returns them.
 pub fn support_iou(probs: &[f32], parts: &[PartId]) -> f64 {
     let s = parts.len();
     if s == 0 {
