@@ -66,16 +66,24 @@ pub enum JLinkageError {
     /// The pair or flow is unusable (see [`InputError`]).
     #[error(transparent)]
     Input(#[from] InputError),
+    /// No motion hypothesis could be drawn: every sampled triplet of P was degenerate
+    /// (collinear or repeated points).
+    #[error("no motion hypothesis could be fitted to any sample of the {points} points")]
+    NoHypothesis {
+        /// Points of P.
+        points: usize,
+    },
 }
 
-/// J-Linkage labels of P's points under `flow` (ids `0..K`); one segment when no
-/// hypothesis can be drawn (collinear or too few points).
+/// J-Linkage labels of P's points under `flow` (ids `0..K`), or
+/// [`JLinkageError::NoHypothesis`] when no hypothesis can be drawn (collinear or too few
+/// points).
 pub fn segment_jlinkage(
     p: &[Point3],
     flow: &[Vector3],
     params: &JLinkageParams,
     seed: u64,
-) -> Vec<u32> {
+) -> Result<Vec<u32>, JLinkageError> {
     let n = p.len();
     let moved = moved_points(p, flow);
     let neighbours = Neighbours::build(p).knn_table(p, params.neighbours);
@@ -89,13 +97,20 @@ pub fn segment_jlinkage(
         &mut rng,
     );
     if hypotheses.is_empty() {
-        return vec![0; n];
+        return Err(JLinkageError::NoHypothesis { points: n });
     }
     let prefs = Preferences::of_points(p, &moved, &hypotheses, params.inlier_threshold);
     let clusters = cluster_jaccard(&prefs, n);
     let min_size = ((params.min_segment_fraction * n as Real).ceil() as usize).max(1);
     let (labels, known) = absorb_small_segments(p, &clusters, min_size);
-    reassign_by_motion(p, &moved, &labels, &known, params.inlier_threshold, params.reassign_rounds)
+    Ok(reassign_by_motion(
+        p,
+        &moved,
+        &labels,
+        &known,
+        params.inlier_threshold,
+        params.reassign_rounds,
+    ))
 }
 
 /// The J-Linkage segmenter (name `"jlc"`).
@@ -119,7 +134,7 @@ impl Segmenter for JLinkage {
 
     fn segment(&self, input: &PairInput, flow: &[Vector3]) -> Result<Prediction, MethodError> {
         run_segmenter(self.name(), input, flow, self.params.seed, |input, flow, seed| {
-            Ok::<_, JLinkageError>(segment_jlinkage(&input.p.points, flow, &self.params, seed))
+            segment_jlinkage(&input.p.points, flow, &self.params, seed)
         })
     }
 }

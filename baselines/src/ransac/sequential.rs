@@ -87,6 +87,15 @@ pub enum SeqRansacError {
     /// The pair or flow is unusable (see [`InputError`]).
     #[error(transparent)]
     Input(#[from] InputError),
+    /// No rigid motion is supported by enough points to make a first mode: the flow is
+    /// explained by no motion (or P's points are too few or collinear to fit one).
+    #[error("no consensus: the best motion explains {support} points, a mode needs {needed}")]
+    NoConsensus {
+        /// Inliers of the best motion found (0 when none could be fitted).
+        support: usize,
+        /// Inliers a mode needs (`min_mode_fraction` of the points, at least 3).
+        needed: usize,
+    },
 }
 
 /// The points of `pool` whose residual under `motion` is below `threshold`.
@@ -131,14 +140,14 @@ fn best_mode(
     Some((motion, support))
 }
 
-/// SeqRANSAC labels of P's points under `flow` (one label per point, ids `0..K`); a single
-/// segment when no mode is found (collinear points, too few points).
+/// SeqRANSAC labels of P's points under `flow` (one label per point, ids `0..K`), or
+/// [`SeqRansacError::NoConsensus`] when not even a first mode is found.
 pub fn segment_ransac(
     p: &[Point3],
     flow: &[Vector3],
     params: &SeqRansacParams,
     seed: u64,
-) -> Vec<u32> {
+) -> Result<Vec<u32>, SeqRansacError> {
     let n = p.len();
     let moved = moved_points(p, flow);
     let neighbours = Neighbours::build(p).knn_table(p, params.neighbours);
@@ -148,12 +157,16 @@ pub fn segment_ransac(
     let mut modes: Vec<Similarity> = Vec::new();
     let mut labels = vec![u32::MAX; n];
     let min_support = ((params.min_mode_fraction * n as Real).ceil() as usize).max(3);
+    let mut first_support = 0;
     while modes.len() < params.max_modes && pool.len() as Real >= params.stop_fraction * n as Real {
         let Some((motion, support)) =
             best_mode(p, &moved, &pool, &in_pool, &neighbours, params, &mut rng)
         else {
             break;
         };
+        if modes.is_empty() {
+            first_support = support.len();
+        }
         if support.len() < min_support {
             break;
         }
@@ -165,7 +178,7 @@ pub fn segment_ransac(
         modes.push(motion);
     }
     if modes.is_empty() {
-        return vec![0; n];
+        return Err(SeqRansacError::NoConsensus { support: first_support, needed: min_support });
     }
     // Leftovers join the mode of smallest residual (the paper's rule); those that no mode
     // explains within the threshold (flow outliers) take their nearest neighbour's label.
@@ -175,14 +188,14 @@ pub fn segment_ransac(
         .collect();
     let labels: Vec<u32> =
         labels.iter().zip(nearest).map(|(&l, best)| if l == u32::MAX { best } else { l }).collect();
-    reassign_by_motion(
+    Ok(reassign_by_motion(
         p,
         &moved,
         &labels,
         &explained,
         params.inlier_threshold,
         params.reassign_rounds,
-    )
+    ))
 }
 
 /// The SeqRANSAC segmenter (name `"seqransac"`).
@@ -206,7 +219,7 @@ impl Segmenter for SeqRansac {
 
     fn segment(&self, input: &PairInput, flow: &[Vector3]) -> Result<Prediction, MethodError> {
         run_segmenter(self.name(), input, flow, self.params.seed, |input, flow, seed| {
-            Ok::<_, SeqRansacError>(segment_ransac(&input.p.points, flow, &self.params, seed))
+            segment_ransac(&input.p.points, flow, &self.params, seed)
         })
     }
 }
@@ -243,12 +256,30 @@ mod tests {
                 _ => Vector3::new(rng.random(), rng.random(), rng.random()) - Vector3::repeat(0.5),
             })
             .collect();
-        let labels = segment_ransac(&p, &flow, &SeqRansacParams::default(), 1);
+        let labels = segment_ransac(&p, &flow, &SeqRansacParams::default(), 1).expect("a mode");
         let planted = labels[0];
         assert!((0..300).step_by(2).all(|i| labels[i] == planted));
         let members: Vec<usize> =
             (0..300).filter(|&i| labels[i] == planted && i % 2 == 0).collect();
         let fit = fit_motion_indices(&p, &moved_points(&p, &flow), &members).expect("well posed");
         assert!(pairs::transform::rotation_error_deg(&fit.rotation, &truth.rotation) < 0.1);
+    }
+
+    #[test]
+    fn flow_that_no_motion_explains_is_no_consensus() {
+        let mut rng = ChaCha8Rng::seed_from_u64(9);
+        let p: Vec<Point3> =
+            (0..200).map(|_| Point3::new(rng.random(), rng.random(), rng.random())).collect();
+        let flow: Vec<Vector3> = (0..200)
+            .map(|_| Vector3::new(rng.random(), rng.random(), rng.random()) - Vector3::repeat(0.5))
+            .collect();
+        let params = SeqRansacParams { min_mode_fraction: 0.2, ..SeqRansacParams::default() };
+        match segment_ransac(&p, &flow, &params, 1) {
+            Err(SeqRansacError::NoConsensus { support, needed }) => {
+                assert_eq!(needed, 40);
+                assert!(support < 40, "{support}");
+            }
+            other => panic!("expected no consensus, got {other:?}"),
+        }
     }
 }
