@@ -59,8 +59,7 @@ pub fn write_picture(
 ) -> Result<GalleryPicture, EvalError> {
     let truth = &pair.truth().part_p;
     let points = &pair.input().p.points;
-    let mut panels =
-        vec![("ground truth".to_owned(), truth.iter().map(|&k| u32::from(k)).collect())];
+    let mut panels = vec![("ground truth".to_owned(), pairs::parts::part_segments(truth))];
     panels.extend(rows.iter().map(|(name, s)| (name.clone(), match_colours(s, truth))));
     let mut image = RgbImage::from_pixel(PANEL * panels.len() as u32, PANEL, Rgb([255; 3]));
     for (i, (_, labels)) in panels.iter().enumerate() {

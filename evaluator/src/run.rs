@@ -126,8 +126,8 @@ pub fn predict_pair(
             let truth = pair.truth();
             Ok(Prediction {
                 flow: Some(truth.flow.clone()),
-                segments_p: truth.part_p.iter().map(|&k| u32::from(k)).collect(),
-                segments_q: truth.part_q.iter().map(|&k| u32::from(k)).collect(),
+                segments_p: pairs::parts::part_segments(&truth.part_p),
+                segments_q: pairs::parts::part_segments(&truth.part_q),
                 motions: truth.motions.clone(),
                 corr_mask: None,
                 segment_probs: None,

@@ -203,8 +203,8 @@ mod tests {
         let t = pair.truth();
         Prediction {
             flow: Some(t.flow.clone()),
-            segments_p: t.part_p.iter().map(|&k| u32::from(k)).collect(),
-            segments_q: t.part_q.iter().map(|&k| u32::from(k)).collect(),
+            segments_p: pairs::parts::part_segments(&t.part_p),
+            segments_q: pairs::parts::part_segments(&t.part_q),
             motions: t.motions.clone(),
             ..Prediction::default()
         }

@@ -60,6 +60,6 @@ pub use ground_truth::GroundTruth;
 pub use joints::{JointKind, JointTruth};
 pub use method::{Method, MethodError, Prediction, Segmenter};
 pub use pair::{Pair, PairInput, PairKind, Pose, Provenance};
-pub use parts::PartId;
+pub use parts::{PartId, SegmentId};
 pub use scan::{Intrinsics, Scan, Scans};
 pub use transform::Similarity;

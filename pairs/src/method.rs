@@ -4,6 +4,7 @@
 use crate::joint_estimate::JointEstimate;
 use crate::math::{Real, Vector3};
 use crate::pair::PairInput;
+use crate::parts::SegmentId;
 use crate::transform::Similarity;
 
 /// What every method returns for a pair.
@@ -12,9 +13,9 @@ pub struct Prediction {
     /// Flow on P, Q's normalised units; `None` for pure segmenters.
     pub flow: Option<Vec<Vector3>>,
     /// Segment id of every point of P.
-    pub segments_p: Vec<u32>,
+    pub segments_p: Vec<SegmentId>,
     /// Segment id of every point of Q (same ids as P); empty if the method does not segment Q.
-    pub segments_q: Vec<u32>,
+    pub segments_q: Vec<SegmentId>,
     /// Rigid (or similarity) motion of each segment, P's to Q's normalised frame; may be empty.
     pub motions: Vec<Similarity>,
     /// Soft correspondence mask on P in `[0, 1]`, if the method estimates one.

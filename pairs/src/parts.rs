@@ -5,6 +5,17 @@
 /// Part 0 is the part that holds the object's root link (the base).
 pub type PartId = u8;
 
+/// Identifier of a predicted segment of a cloud ([`crate::Prediction`]'s `segments_p` and
+/// `segments_q`). Segments are a method's answer, not parts: a method may find more
+/// segments than the [`MAX_PARTS`] a pair can have, so the type is wider than [`PartId`].
+pub type SegmentId = u32;
+
+/// The segmentation that labels every point with its true part: what a perfect method
+/// returns (the oracle rows, the gallery's ground-truth panel, tests).
+pub fn part_segments(parts: &[PartId]) -> Vec<SegmentId> {
+    parts.iter().map(|&k| SegmentId::from(k)).collect()
+}
+
 /// Largest number of parts a pair may have (ids `0..MAX_PARTS`).
 pub const MAX_PARTS: usize = PartId::MAX as usize + 1;
 

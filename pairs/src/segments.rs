@@ -5,10 +5,11 @@
 use crate::math::{Point3, Vector3};
 use crate::method::Prediction;
 use crate::pair::PairInput;
+use crate::parts::SegmentId;
 use crate::transform::{fit_similarity_weighted, Similarity};
 
 /// Relabels arbitrary segment ids as `0..K` in order of first appearance.
-pub fn compact_labels<T: Copy + PartialEq>(raw: &[T]) -> Vec<u32> {
+pub fn compact_labels<T: Copy + PartialEq>(raw: &[T]) -> Vec<SegmentId> {
     let mut order: Vec<T> = Vec::new();
     raw.iter()
         .map(|&r| {
@@ -16,7 +17,7 @@ pub fn compact_labels<T: Copy + PartialEq>(raw: &[T]) -> Vec<u32> {
                 order.push(r);
                 order.len() - 1
             });
-            k as u32
+            k as SegmentId
         })
         .collect()
 }
@@ -24,10 +25,14 @@ pub fn compact_labels<T: Copy + PartialEq>(raw: &[T]) -> Vec<u32> {
 /// The motion of each segment `0..K` that best maps its points of P onto `p + flow`
 /// (Umeyama: rotation, translation and scale, because P and Q are normalised separately);
 /// identity for a segment whose fit is degenerate or empty.
-pub fn fit_segment_motions(p: &[Point3], flow: &[Vector3], segments: &[u32]) -> Vec<Similarity> {
+pub fn fit_segment_motions(
+    p: &[Point3],
+    flow: &[Vector3],
+    segments: &[SegmentId],
+) -> Vec<Similarity> {
     let count = segments.iter().max().map_or(0, |&m| m as usize + 1);
     let moved: Vec<Point3> = p.iter().zip(flow).map(|(x, f)| x + f).collect();
-    (0..count as u32)
+    (0..count as SegmentId)
         .map(|k| {
             let weights: Vec<f32> =
                 segments.iter().map(|&l| if l == k { 1.0 } else { 0.0 }).collect();
@@ -40,10 +45,10 @@ pub fn fit_segment_motions(p: &[Point3], flow: &[Vector3], segments: &[u32]) -> 
 /// points were moved by their segment's motion. Empty when P is empty.
 pub fn transfer_labels(
     p: &[Point3],
-    segments: &[u32],
+    segments: &[SegmentId],
     motions: &[Similarity],
     q: &[Point3],
-) -> Vec<u32> {
+) -> Vec<SegmentId> {
     let placed: Vec<Point3> = p
         .iter()
         .zip(segments)

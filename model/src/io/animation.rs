@@ -182,7 +182,7 @@ mod tests {
     fn the_glb_is_well_formed_and_ends_at_q() {
         let pair = hinge_pair("t", 4, 0.9);
         let (input, truth) = (pair.input(), pair.truth());
-        let labels: Vec<u32> = truth.part_p.iter().map(|&l| u32::from(l)).collect();
+        let labels = pairs::parts::part_segments(&truth.part_p);
         let glb = animation_glb(
             &input.p.points,
             &labels,

@@ -45,7 +45,7 @@ mod tests {
     fn recovers_the_parts_motions_and_their_shared_scale() {
         let pair = hinge_pair("t", 6, 0.9);
         let (input, truth) = (pair.input(), pair.truth());
-        let labels: Vec<u32> = truth.part_p.iter().map(|&l| u32::from(l)).collect();
+        let labels = pairs::parts::part_segments(&truth.part_p);
         let weights = vec![1.0; labels.len()];
         let fit = fit_motions_shared_scale(&input.p.points, &truth.flow, &labels, &weights, 3);
         for (m, gt) in fit.iter().zip(&truth.motions) {
