@@ -8,7 +8,7 @@
 //!   [`network::segmentation`] module (hypotheses, support, RPEN; 4.3), the single forward
 //!   pass ([`network::predict`]) and every size ([`network::config`]).
 //! - [`train`] (5): the stage-wise trainer and its data-parallel step, with the pairs as
-//!   tensors ([`train::batch`]), the losses and each stage's objective, the fixed
+//!   tensors with their truth ([`train::batch`]), the losses and each stage's objective, the fixed
 //!   validation set, the training config ([`train::config`]), checkpoints, the log and the
 //!   loss plot.
 //! - [`inference`] (4.4): the iterative procedure, the rotation search over 48 initial

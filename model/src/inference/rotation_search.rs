@@ -26,10 +26,10 @@ use burn::tensor::activation;
 use pairs::math::{Matrix3, Real, UnitQuaternion};
 use pairs::PairInput;
 
+use crate::network::input::{points_tensor, Prepared};
 use crate::network::predict::floats;
 use crate::network::sampling::SamplingError;
 use crate::network::PartInductionNet;
-use crate::train::batch::{points_tensor, Prepared};
 
 /// Points of the subsets the search scores candidates on.
 pub const SEARCH_POINTS: usize = 64;

@@ -1,7 +1,7 @@
 //! The network of the paper, [`PartInductionNet`]: correspondence proposal ([`correspondence`],
 //! 4.1), flow ([`flow`], 4.2) and the [`segmentation`] module (hypotheses, support, RPEN;
 //! 4.3), as one burn module with one forward per training stage; [`predict`] is its single
-//! forward pass on a pair. Below them: [`sampling`] (farthest-point samples, ball
+//! forward pass on a pair, on the clouds and subsets of [`input`]. Below them: [`sampling`] (farthest-point samples, ball
 //! neighbourhoods and 3-NN weights as plain indices), [`pointnet`] (the PointNet++ layers
 //! that gather by those indices, [`norm`] fusing a layer's bias, layer norm and ReLU when
 //! training on the CPU), the [`backbone`] they build, and [`rotation`], the differentiable
@@ -11,6 +11,7 @@ pub mod backbone;
 pub mod config;
 pub mod correspondence;
 pub mod flow;
+pub mod input;
 pub mod norm;
 pub mod pointnet;
 pub mod predict;

@@ -13,9 +13,9 @@ use pairs::segments::complete_prediction;
 use pairs::{PairInput, Prediction};
 
 use crate::inference::labels::{segment_pair, HardLabelParams};
+use crate::network::input::{points_tensor, Prepared};
 use crate::network::sampling::{three_nn, SamplingError};
 use crate::network::PartInductionNet;
-use crate::train::batch::{points_tensor, Prepared};
 
 /// A tensor's values as f32.
 pub(crate) fn floats<const D: usize>(t: Tensor<D>) -> Vec<f32> {

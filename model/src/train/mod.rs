@@ -3,7 +3,11 @@
 //! schedule (step decay, or a warm-up and half a cosine per stage), a CSV log and loss-curve
 //! PNG under the report folder, validation on a fixed set, checkpoints every few minutes, and
 //! exact resumption from the last checkpoint. Its `step` module holds one step's arithmetic (the
-//! per-pair draws, the batch's loss and gradients over data-parallel shards).
+//! per-pair draws, the batch's loss and gradients over data-parallel shards); [`batch`] turns
+//! pairs into tensors with their truth on the subsets, [`losses`] and [`objective`] are each
+//! stage's terms and weights, [`validation`] the fixed validation set and its scores,
+//! [`config`] the training settings, and [`checkpoint`], [`log`] and [`plot`] what a run
+//! writes.
 
 use std::path::PathBuf;
 use std::time::Instant;
