@@ -241,10 +241,7 @@ pub fn remember_datasets(reports: &Path, specs: &[DatasetSpec]) -> Result<(), Ev
         return Ok(());
     }
     let json = serde_json::to_string_pretty(&map).expect("a name map serialises");
-    pairs::atomic::replace_file(&path, |out| {
-        std::io::Write::write_all(out, json.as_bytes())
-            .map_err(|source| EvalError::Io { path: path.clone(), source })
-    })
+    Ok(pairs::atomic::replace_bytes(&path, json.as_bytes())?)
 }
 
 #[cfg(test)]

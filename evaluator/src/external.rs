@@ -24,7 +24,7 @@ use sha2::{Digest, Sha256};
 
 use crate::datasets::LoadedDataset;
 use crate::error::EvalError;
-use pairs::atomic::replace_file;
+use pairs::atomic::replace_bytes;
 
 /// The file under the reports folder that remembers the external rows scored into it.
 pub const EXTERNAL_ROWS_FILE: &str = "external_rows.json";
@@ -98,10 +98,7 @@ pub fn remember_rows(
 ) -> Result<(), EvalError> {
     let path = reports.join(EXTERNAL_ROWS_FILE);
     let json = serde_json::to_string_pretty(rows).expect("a row map serialises");
-    replace_file(&path, |out| {
-        std::io::Write::write_all(out, json.as_bytes())
-            .map_err(|source| EvalError::Io { path: path.clone(), source })
-    })
+    Ok(replace_bytes(&path, json.as_bytes())?)
 }
 
 /// The sha256 of a file, lowercase hex.

@@ -4,7 +4,6 @@
 //! nothing that changes between reruns except through the data.
 
 use std::fmt::Write as _;
-use std::io::Write as _;
 use std::path::Path;
 
 use polars::prelude::{AnyValue, DataFrame};
@@ -16,7 +15,7 @@ use crate::leaderboard::Leaderboards;
 use crate::paper::{figures_for, Metric, PaperFigure, FIGURES};
 use crate::plots::colour_hex;
 use crate::tuning::Sweep;
-use pairs::atomic::replace_file;
+use pairs::atomic::replace_bytes;
 
 fn cell(value: AnyValue) -> String {
     match value {
@@ -233,8 +232,5 @@ pub fn write_report(
     out.push_str("## Timings (this machine; not part of the reproducible tables)\n\n");
     table(&mut out, &header(&boards.timings), &cells(&boards.timings));
     let path = dir.join("LEADERBOARD.md");
-    replace_file(&path, |file| {
-        file.write_all(out.as_bytes())
-            .map_err(|source| EvalError::Io { path: path.clone(), source })
-    })
+    Ok(replace_bytes(&path, out.as_bytes())?)
 }

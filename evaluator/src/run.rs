@@ -5,7 +5,6 @@
 //! dataset's content hash: a run is reused only while both match.
 
 use std::collections::{BTreeMap, HashMap};
-use std::io::Write as _;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex};
@@ -23,7 +22,7 @@ use crate::passes::{passes_path, read_passes, score_passes, write_passes, PairPa
 use crate::record::{joint_types, read_rows, write_rows, RunRow};
 use crate::registry::{method_flow_name, Entry, FlowSource, Runner};
 use crate::score::score_pair;
-use pairs::atomic::replace_file;
+use pairs::atomic::replace_bytes;
 
 /// Version of the runs files; bump it when scoring changes so cached runs are recomputed.
 pub const RUNS_VERSION: u32 = 3;
@@ -336,9 +335,6 @@ pub fn run_entry(
         write_passes(&passes_path(&path), passes)?;
     }
     let json = serde_json::to_string_pretty(&meta).expect("run metadata serialises");
-    replace_file(&meta_path, |out| {
-        out.write_all(json.as_bytes())
-            .map_err(|source| EvalError::Io { path: meta_path.clone(), source })
-    })?;
+    replace_bytes(&meta_path, json.as_bytes())?;
     Ok(RunResult { rows: records, meta, cached: false, passes })
 }

@@ -15,7 +15,6 @@
 //! split reach [`tune`]: a test dataset is refused.
 
 use std::fmt::Write as _;
-use std::io::Write as _;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
@@ -28,7 +27,7 @@ use crate::error::EvalError;
 use crate::registry::Runner;
 use crate::run::{predict_pair, FlowCache};
 use crate::score::score_pair;
-use pairs::atomic::replace_file;
+use pairs::atomic::replace_bytes;
 
 /// One swept parameter: its name, its starting values (ascending) and how it widens.
 #[derive(Debug, Clone, PartialEq)]
@@ -313,10 +312,7 @@ pub fn tune(
     let meta_path = meta_path(reports, row);
     let json = serde_json::to_string_pretty(&SweepMeta { key, sweep: sweep.clone() })
         .expect("a sweep serialises");
-    replace_file(&meta_path, |out| {
-        out.write_all(json.as_bytes())
-            .map_err(|source| EvalError::Io { path: meta_path.clone(), source })
-    })?;
+    replace_bytes(&meta_path, json.as_bytes())?;
     Ok(sweep)
 }
 
@@ -350,10 +346,7 @@ pub fn write_sweep(reports: &Path, sweep: &Sweep) -> Result<(), EvalError> {
             i == sweep.chosen
         );
     }
-    replace_file(&path, |out| {
-        out.write_all(text.as_bytes())
-            .map_err(|source| EvalError::Io { path: path.clone(), source })
-    })
+    Ok(replace_bytes(&path, text.as_bytes())?)
 }
 
 #[cfg(test)]

@@ -81,6 +81,11 @@ pub fn replace_file<E: From<FileError>>(
     })
 }
 
+/// [`replace_file`] with `bytes` as the whole content.
+pub fn replace_bytes(path: &Path, bytes: &[u8]) -> Result<(), FileError> {
+    replace_file(path, |out| out.write_all(bytes).map_err(at(path)))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -98,6 +103,8 @@ mod tests {
         replace_file(&path, |out| write!(out, "old").map_err(at(&path))).unwrap();
         replace_file(&path, |out| write!(out, "new").map_err(at(&path))).unwrap();
         assert_eq!(std::fs::read_to_string(&path).unwrap(), "new");
+        replace_bytes(&path, b"bytes").unwrap();
+        assert_eq!(std::fs::read_to_string(&path).unwrap(), "bytes");
         assert_eq!(partial_path(&path), dir.join("sub").join("board.csv.partial"));
         assert!(!partial_path(&path).exists());
         std::fs::remove_dir_all(&dir).unwrap();

@@ -169,8 +169,8 @@ pub fn write_animation(
     q: &[Point3],
     params: &AnimationParams,
 ) -> Result<(), PointFileError> {
-    std::fs::write(path, animation_glb(p, labels, motions, q, params))
-        .map_err(|source| PointFileError::Io { path: path.to_path_buf(), source })
+    let glb = animation_glb(p, labels, motions, q, params);
+    Ok(pairs::atomic::replace_bytes(path, &glb)?)
 }
 
 #[cfg(test)]

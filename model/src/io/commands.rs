@@ -166,8 +166,7 @@ pub fn write_segment_plys(
     input: &PairInput,
     prediction: &Prediction,
 ) -> Result<Vec<PathBuf>, AppError> {
-    std::fs::create_dir_all(dir)
-        .map_err(|source| PointFileError::Io { path: dir.to_path_buf(), source })?;
+    std::fs::create_dir_all(dir).map_err(pairs::atomic::at(dir)).map_err(PointFileError::from)?;
     let mut written = Vec::new();
     for (name, cloud, labels) in [
         ("p_segments.ply", &input.p, &prediction.segments_p),

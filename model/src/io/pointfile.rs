@@ -8,6 +8,7 @@
 use std::path::{Path, PathBuf};
 
 use generator::import::mesh_files::parse_obj;
+use pairs::atomic::{at, replace_bytes, FileError};
 use pairs::math::{Point3, Real};
 use pairs::sampling::{point_on_triangle, triangle_area, AreaSampler};
 use rand::SeedableRng;
@@ -17,14 +18,8 @@ use rand::SeedableRng;
 #[non_exhaustive]
 pub enum PointFileError {
     /// The file could not be opened, read or written.
-    #[error("{path}: {source}")]
-    Io {
-        /// The file.
-        path: PathBuf,
-        /// The I/O error.
-        #[source]
-        source: std::io::Error,
-    },
+    #[error(transparent)]
+    Io(#[from] FileError),
     /// The file is not a PLY or OBJ file this reader understands.
     #[error("{path}: {message}")]
     Malformed {
@@ -45,8 +40,7 @@ fn malformed(path: &Path, message: impl Into<String>) -> PointFileError {
 /// The points of a `.ply` or `.obj` file (by extension); meshes in OBJ files are sampled
 /// to `samples` surface points. Every coordinate must be finite and the cloud non-empty.
 pub fn read_points(path: &Path, samples: usize) -> Result<Vec<Point3>, PointFileError> {
-    let bytes = std::fs::read(path)
-        .map_err(|source| PointFileError::Io { path: path.to_path_buf(), source })?;
+    let bytes = std::fs::read(path).map_err(at(path))?;
     let ext = path.extension().and_then(|e| e.to_str()).map(str::to_ascii_lowercase);
     let points = match ext.as_deref() {
         Some("ply") => read_ply(path, &bytes)?,
@@ -229,8 +223,8 @@ pub fn write_ply(
         writeln!(text, "{} {} {} {} {} {}", p.x, p.y, p.z, c[0], c[1], c[2])
             .expect("writing to a String");
     }
-    std::fs::write(path, text)
-        .map_err(|source| PointFileError::Io { path: path.to_path_buf(), source })
+    // Whole or not at all: an old file of that name survives a failed write.
+    Ok(replace_bytes(path, text.as_bytes())?)
 }
 
 #[cfg(test)]
