@@ -1,7 +1,7 @@
 //! Hashes the source of the crates whose code makes the evaluator's rows (`pairs`,
 //! `baselines`, `model`), the evaluator's own code that runs and scores them (`SCORING`:
-//! run, score, record, passes, joints, reference, tuning, external) and `Cargo.lock` (`LOCK`: a dependency's new
-//! version can move a number), so a row's cached runs are recomputed when any of it changes,
+//! run, score, record, passes, joints, reference, tuning, external) and `Cargo.lock`
+//! (`LOCK`: a dependency's new version can move a number), so a row's cached runs are recomputed when any of it changes,
 //! not only when its parameters or weights do (`SOURCE_HASH_<NAME>` at compile time).
 
 use std::path::{Path, PathBuf};

@@ -13,7 +13,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::EvalError;
 use crate::joints::JointScores;
-use crate::record::cell_error;
+use crate::record::{cell_error, read_error};
 use pairs::atomic::replace_file;
 
 /// The scores of one pass on one pair.
@@ -160,9 +160,13 @@ pub fn read_passes(path: &Path) -> Result<Vec<PairPasses>, EvalError> {
         return Err(bad("the header is not this evaluator's (rerun the row)".into()));
     }
     let mut pairs: Vec<PairPasses> = Vec::new();
-    for (line, row) in reader.deserialize::<PassRow>().enumerate() {
-        let at = |what: String| bad(format!("line {}: {what}", line + 2));
-        let row = row.map_err(|e| at(cell_error(&e, &HEADER)))?;
+    let names = csv::StringRecord::from(HEADER.to_vec());
+    for (i, record) in reader.records().enumerate() {
+        let record = record.map_err(|e| bad(read_error(&e)))?;
+        let line = record.position().map_or(i as u64 + 2, csv::Position::line);
+        let at = |what: String| bad(format!("line {line}: {what}"));
+        let row: PassRow =
+            record.deserialize(Some(&names)).map_err(|e| at(cell_error(&e, &HEADER)))?;
         let score = PassScore {
             epe: row.epe,
             rand_index: row.ri,

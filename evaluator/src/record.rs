@@ -170,6 +170,8 @@ impl RunRow {
         };
         let s = match outcome {
             Err(reason) => {
+                // An empty cell reads back as scored: a failure always says something.
+                let reason = if reason.is_empty() { "failed without a reason" } else { reason };
                 row.failed = Some(reason.to_owned());
                 return row;
             }
@@ -248,6 +250,19 @@ pub fn write_rows(path: &Path, rows: &[RunRow]) -> Result<(), EvalError> {
     })
 }
 
+/// A CSV error reading a row, prefixed with the row's line in the file where it is known.
+pub(crate) fn read_error(error: &csv::Error) -> String {
+    match error.kind() {
+        csv::ErrorKind::UnequalLengths { pos: Some(pos), expected_len, len } => {
+            format!("line {}: {len} fields, the header has {expected_len}", pos.line())
+        }
+        _ => match error.position() {
+            Some(pos) => format!("line {}: {error}", pos.line()),
+            None => error.to_string(),
+        },
+    }
+}
+
 /// A CSV error of one row, naming the column of the cell that failed to deserialise.
 pub(crate) fn cell_error<S: AsRef<str>>(error: &csv::Error, header: &[S]) -> String {
     match error.kind() {
@@ -275,8 +290,9 @@ pub fn read_rows(path: &Path) -> Result<Vec<RunRow>, EvalError> {
         .records()
         .enumerate()
         .map(|(i, record)| {
-            let line = i + 2;
-            let record = record.map_err(|e| bad(format!("line {line}: {e}")))?;
+            let record = record.map_err(|e| bad(read_error(&e)))?;
+            // The file's line, which a quoted reason spanning lines moves past `i + 2`.
+            let line = record.position().map_or(i as u64 + 2, csv::Position::line);
             // By position: the PCC curve is the sequence that ends the row.
             record
                 .deserialize::<RunRow>(None)
@@ -344,6 +360,18 @@ mod tests {
             let err = read_rows(&path).expect_err(expected).to_string();
             assert!(err.contains(expected) && err.contains("m.csv"), "{err}");
         }
+        // A reason over two lines: the next row's error names its line in the file, 4.
+        let panicked = RunRow::new("p", "c", "none", 1.0, Err("assertion failed\nleft: 1"));
+        let good = RunRow::new("a", "laptop", "revolute", 12.5, Ok(&score(true)));
+        write_rows(&path, &[panicked, good]).expect("written");
+        let text = std::fs::read_to_string(&path).expect("read").replacen(",12.5,", ",fast,", 1);
+        std::fs::write(&path, text).expect("written");
+        let err = read_rows(&path).expect_err("not a number").to_string();
+        assert!(err.contains("line 4: column ms"), "{err}");
+        // An empty reason would read back as a scored pair.
+        let silent = RunRow::new("s", "c", "none", 1.0, Err(""));
+        write_rows(&path, std::slice::from_ref(&silent)).expect("written");
+        assert!(!read_rows(&path).expect("read")[0].scored());
         let short = RunRow { pcc: vec![None; 3], ..RunRow::new("z", "c", "none", 1.0, Err("x")) };
         let err = write_rows(&path, &[short]).expect_err("a short curve").to_string();
         assert!(err.contains("3 PCC values"), "{err}");

@@ -1,7 +1,7 @@
 //! The two samplers every crate shares: farthest point sampling (the virtual scanner's
 //! pixels, the baselines' graph nodes and features, the network's PointNet++ centres and
-//! input subsets) and area-weighted surface sampling (the generator's objects, the
-//! trainer's and `model infer`'s meshes).
+//! input subsets) and area-weighted surface sampling (the generator's objects and the
+//! meshes given to `model infer`).
 //!
 //! **Start rule.** [`farthest_point_sampling`] starts at the index its caller gives. A
 //! caller that wants a choice independent of the order of the points (the network, so that
@@ -57,7 +57,8 @@ pub fn farthest_point_sampling(points: &[Point3], n: usize, start: usize) -> Vec
 
 /// The index of the point farthest from the cloud's centroid, the first on ties; 0 for an
 /// empty cloud. As a start for [`farthest_point_sampling`] it makes the chosen points
-/// independent of the order of the input (ties aside), as the authors' CUDA kernel does.
+/// independent of the order of the input (ties aside), where the authors' CUDA kernel
+/// starts at index 0.
 pub fn farthest_from_centroid(points: &[Point3]) -> usize {
     let n = points.len() as Real;
     let centroid = points.iter().fold(Point3::origin(), |acc, p| acc + p.coords / n);

@@ -165,6 +165,10 @@ fn read_ply(path: &Path, bytes: &[u8]) -> Result<Vec<Point3>, PointFileError> {
 fn read_obj(path: &Path, bytes: &[u8], samples: usize) -> Result<Vec<Point3>, PointFileError> {
     let text = String::from_utf8_lossy(bytes);
     let groups = parse_obj(path, &text)?;
+    let corners = groups.iter().flat_map(|g| &g.positions);
+    if let Some(i) = corners.clone().position(|p| !p.coords.iter().all(|v| v.is_finite())) {
+        return Err(malformed(path, format!("vertex {} is not finite", i + 1)));
+    }
     let triangles: Vec<[Point3; 3]> = groups
         .iter()
         .flat_map(|g| g.triangles.iter().map(|t| t.map(|v| g.positions[v as usize])))
@@ -275,6 +279,7 @@ mod tests {
             ("b.obj", "v 1 2\n", "not valid OBJ"),
             ("c.obj", "v 0 0 0\nf 1 2 3\n", "index out of bounds"),
             ("d.obj", "v nan 0 0\n", "not finite"),
+            ("d2.obj", "v 0 0 0\nv 1 0 0\nv 0 inf 0\nf 1 2 3\n", "vertex 3 is not finite"),
             ("e.obj", "# nothing\n", "no points"),
             ("f.xyz", "", "expected a .ply or .obj"),
         ];

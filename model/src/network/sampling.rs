@@ -2,8 +2,8 @@
 //! queries and 3-nearest-neighbour interpolation weights, on plain `[f32; 3]` points.
 //!
 //! Farthest point sampling is `pairs`' one ([`pairs::sampling::farthest_point_sampling`])
-//! started at the point farthest from the cloud's centroid (as the authors' CUDA kernel
-//! does), so the chosen points, as a set and in order, do not depend on the order of the
+//! started at the point farthest from the cloud's centroid instead of at index 0 (the
+//! authors' CUDA kernel), so the chosen points, as a set and in order, do not depend on the order of the
 //! input points (ties aside): permuting a cloud permutes every per-point output of the
 //! network the same way.
 

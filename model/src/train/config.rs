@@ -2,7 +2,7 @@
 //! read from TOML (`model/configs/<name>.toml`).
 //!
 //! Three configs ship with the crate and are built in by name: `paper` (the sizes of the
-//! authors' release, see DESIGN.md), `cpu` (narrower layers and smaller subsets, for
+//! authors' release), `cpu` (narrower layers and smaller subsets, for
 //! training on a laptop-class CPU) and `tiny` (for tests).
 
 use std::path::{Path, PathBuf};
