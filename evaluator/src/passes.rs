@@ -13,7 +13,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::error::EvalError;
 use crate::joints::JointScores;
-use crate::record::{cell_error, read_error};
+use crate::record::read_csv;
 use pairs::atomic::replace_file;
 
 /// The scores of one pass on one pair.
@@ -152,21 +152,13 @@ pub fn write_passes(path: &Path, pairs: &[PairPasses]) -> Result<(), EvalError> 
 
 /// Reads a passes file: every pair's passes in file order, each pair's numbered 1, 2, ...
 pub fn read_passes(path: &Path) -> Result<Vec<PairPasses>, EvalError> {
-    let bad = |message: String| EvalError::Csv { path: path.to_path_buf(), message };
-    let mut reader = csv::Reader::from_path(path).map_err(|e| bad(e.to_string()))?;
-    let header: Vec<String> =
-        reader.headers().map_err(|e| bad(e.to_string()))?.iter().map(str::to_owned).collect();
-    if header != HEADER {
-        return Err(bad("the header is not this evaluator's (rerun the row)".into()));
-    }
+    let header: Vec<String> = HEADER.iter().map(|h| h.to_string()).collect();
     let mut pairs: Vec<PairPasses> = Vec::new();
-    let names = csv::StringRecord::from(HEADER.to_vec());
-    for (i, record) in reader.records().enumerate() {
-        let record = record.map_err(|e| bad(read_error(&e)))?;
-        let line = record.position().map_or(i as u64 + 2, csv::Position::line);
-        let at = |what: String| bad(format!("line {line}: {what}"));
-        let row: PassRow =
-            record.deserialize(Some(&names)).map_err(|e| at(cell_error(&e, &HEADER)))?;
+    for (line, row) in read_csv::<PassRow>(path, &header)? {
+        let out_of_order = |pair: &str, pass| EvalError::Csv {
+            path: path.to_path_buf(),
+            message: format!("line {line}: pass {pass} of pair {pair} is out of order"),
+        };
         let score = PassScore {
             epe: row.epe,
             rand_index: row.ri,
@@ -185,7 +177,7 @@ pub fn read_passes(path: &Path) -> Result<Vec<PairPasses>, EvalError> {
                 last.passes.push(score)
             }
             _ if pass == 1 => pairs.push(PairPasses { pair, passes: vec![score] }),
-            _ => return Err(at(format!("pass {pass} of pair {pair} is out of order"))),
+            _ => return Err(out_of_order(&pair, pass)),
         }
     }
     Ok(pairs)

@@ -15,7 +15,7 @@ use pairs::atomic::replace_file;
 /// failed pair (whose `failed` holds the reason); `epe` and `pcc` are `None` for a method
 /// without flow, the `_q` scores for one without Q's segments. Sums and counts rather than
 /// means, so that the boards can average over parts, matches and joints.
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 pub struct RunRow {
     /// The pair's id.
     pub pair: String,
@@ -140,33 +140,10 @@ impl RunRow {
         let mut row = Self {
             pair: pair.to_owned(),
             category: category.to_owned(),
-            failed: None,
             ms,
-            epe: None,
-            ri: None,
-            iou_sum: None,
-            parts: None,
-            segments: None,
-            ri_q: None,
-            iou_q_sum: None,
-            parts_q: None,
-            matched: None,
-            rotation_sum: None,
-            translation_sum: None,
-            rotation_max: None,
-            has_flow: None,
             joint_types: joint_types.to_owned(),
-            joints: None,
-            joints_typed: None,
-            axis_sum: None,
-            axis_n: None,
-            line_sum: None,
-            line_n: None,
-            state_rev_sum: None,
-            state_rev_n: None,
-            state_pri_sum: None,
-            state_pri_n: None,
             pcc: vec![None; PCC_THRESHOLDS],
+            ..Self::default()
         };
         let s = match outcome {
             Err(reason) => {
@@ -238,11 +215,9 @@ pub fn write_rows(path: &Path, rows: &[RunRow]) -> Result<(), EvalError> {
         writer.write_record(header()).map_err(bad)?;
         for row in rows {
             if row.pcc.len() != PCC_THRESHOLDS {
-                return Err(bad(csv::Error::from(std::io::Error::other(format!(
-                    "pair {}: {} PCC values, expected {PCC_THRESHOLDS}",
-                    row.pair,
-                    row.pcc.len()
-                )))));
+                let (pair, n) = (&row.pair, row.pcc.len());
+                let message = format!("pair {pair}: {n} PCC values, expected {PCC_THRESHOLDS}");
+                return Err(EvalError::Csv { path: path.to_path_buf(), message });
             }
             writer.serialize(row).map_err(bad)?;
         }
@@ -250,8 +225,35 @@ pub fn write_rows(path: &Path, rows: &[RunRow]) -> Result<(), EvalError> {
     })
 }
 
+/// The rows of a cache CSV (`header` checked, each row deserialised by position, so a
+/// sequence may end it), each with its line in the file. Errors name the file, the line
+/// (a quoted cell spanning lines moves later rows past `i + 2`) and the column.
+pub(crate) fn read_csv<T: serde::de::DeserializeOwned>(
+    path: &Path,
+    header: &[String],
+) -> Result<Vec<(u64, T)>, EvalError> {
+    let bad = |message: String| EvalError::Csv { path: path.to_path_buf(), message };
+    let mut reader = csv::Reader::from_path(path).map_err(|e| bad(e.to_string()))?;
+    let found = reader.headers().map_err(|e| bad(e.to_string()))?;
+    if found.iter().ne(header.iter().map(String::as_str)) {
+        return Err(bad("the header is not this evaluator's (rerun the row)".into()));
+    }
+    reader
+        .records()
+        .enumerate()
+        .map(|(i, record)| {
+            let record = record.map_err(|e| bad(read_error(&e)))?;
+            let line = record.position().map_or(i as u64 + 2, csv::Position::line);
+            let row = record
+                .deserialize(None)
+                .map_err(|e| bad(format!("line {line}: {}", cell_error(&e, header))))?;
+            Ok((line, row))
+        })
+        .collect()
+}
+
 /// A CSV error reading a row, prefixed with the row's line in the file where it is known.
-pub(crate) fn read_error(error: &csv::Error) -> String {
+fn read_error(error: &csv::Error) -> String {
     match error.kind() {
         csv::ErrorKind::UnequalLengths { pos: Some(pos), expected_len, len } => {
             format!("line {}: {len} fields, the header has {expected_len}", pos.line())
@@ -264,12 +266,11 @@ pub(crate) fn read_error(error: &csv::Error) -> String {
 }
 
 /// A CSV error of one row, naming the column of the cell that failed to deserialise.
-pub(crate) fn cell_error<S: AsRef<str>>(error: &csv::Error, header: &[S]) -> String {
+fn cell_error(error: &csv::Error, header: &[String]) -> String {
     match error.kind() {
         csv::ErrorKind::Deserialize { err, .. } => {
-            let column = err.field().and_then(|f| header.get(f as usize));
-            match column {
-                Some(name) => format!("column {}: {}", name.as_ref(), err.kind()),
+            match err.field().and_then(|f| header.get(f as usize)) {
+                Some(name) => format!("column {name}: {}", err.kind()),
                 None => err.to_string(),
             }
         }
@@ -279,26 +280,7 @@ pub(crate) fn cell_error<S: AsRef<str>>(error: &csv::Error, header: &[S]) -> Str
 
 /// Reads a runs file, checking that its header is this version's and every row is whole.
 pub fn read_rows(path: &Path) -> Result<Vec<RunRow>, EvalError> {
-    let bad = |message: String| EvalError::Csv { path: path.to_path_buf(), message };
-    let mut reader = csv::Reader::from_path(path).map_err(|e| bad(e.to_string()))?;
-    let found: Vec<String> =
-        reader.headers().map_err(|e| bad(e.to_string()))?.iter().map(str::to_owned).collect();
-    if found != header() {
-        return Err(bad("the header is not this evaluator's (rerun the method)".into()));
-    }
-    reader
-        .records()
-        .enumerate()
-        .map(|(i, record)| {
-            let record = record.map_err(|e| bad(read_error(&e)))?;
-            // The file's line, which a quoted reason spanning lines moves past `i + 2`.
-            let line = record.position().map_or(i as u64 + 2, csv::Position::line);
-            // By position: the PCC curve is the sequence that ends the row.
-            record
-                .deserialize::<RunRow>(None)
-                .map_err(|e| bad(format!("line {line}: {}", cell_error(&e, &found))))
-        })
-        .collect()
+    Ok(read_csv(path, &header())?.into_iter().map(|(_, row)| row).collect())
 }
 
 #[cfg(test)]

@@ -289,13 +289,14 @@ pub fn run_entry(
                 scored.map(|s| (s, p.segments_p))
             });
             progress();
-            let (outcome, segments) = match &outcome {
-                Ok((score, segments)) => (Ok(score), Some(segments.clone())),
-                Err(reason) => (Err(reason.as_str()), None),
-            };
             let keep = options.gallery.iter().any(|g| g == pair.id());
             let types = joint_types(pair.truth());
-            let record = RunRow::new(pair.id(), &pair.provenance().category, &types, ms, outcome);
+            let category = &pair.provenance().category;
+            let row = |outcome| RunRow::new(pair.id(), category, &types, ms, outcome);
+            let (record, segments) = match outcome {
+                Ok((score, segments)) => (row(Ok(&score)), Some(segments)),
+                Err(reason) => (row(Err(&reason)), None),
+            };
             (record, segments.filter(|_| keep), own_flow, passes)
         })
         .collect();

@@ -54,11 +54,8 @@ impl SurfaceSampler {
         self.areas.total_area()
     }
 
-    /// Draws `n` points; empty if the object has no area.
+    /// Draws `n` points; empty if the object has no area (no draw is then made).
     pub fn sample(&self, object: &ArticulatedObject, n: usize, rng: &mut Rng) -> Vec<SurfacePoint> {
-        if self.total_area() <= 0.0 {
-            return Vec::new();
-        }
         (0..n)
             .filter_map(|_| {
                 let (link, t) = self.triangles[self.areas.draw(rng)?];
