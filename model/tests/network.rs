@@ -253,6 +253,38 @@ fn parameter_values(net: &PartInductionNet) -> Vec<Vec<f32>> {
 }
 
 #[test]
+fn seeding_is_not_disturbed_by_networks_loaded_on_other_threads() {
+    // burn draws weights from one process-wide generator, and building a network to load
+    // weights into draws from it too: without the crate's lock, a load on another thread
+    // changed a seeded network (and with it a whole training run).
+    let config = tiny().network;
+    let dir = tempfile::tempdir().expect("a temporary folder");
+    let file = dir.path().join("w.bpk");
+    save_weights(&PartInductionNet::seeded(&config, &Device::flex(), 1), &file).expect("saved");
+    let expected = parameter_values(&PartInductionNet::seeded(&config, &Device::flex(), 3));
+    use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+    let (done, loads) = (AtomicBool::new(false), AtomicUsize::new(0));
+    std::thread::scope(|scope| {
+        scope.spawn(|| {
+            while !done.load(Ordering::Relaxed) {
+                load_weights(&config, &file, &Device::flex()).expect("loads");
+                loads.fetch_add(1, Ordering::Relaxed);
+            }
+        });
+        while loads.load(Ordering::Relaxed) == 0 {
+            std::thread::yield_now();
+        }
+        let differing = (0..30)
+            .filter(|_| {
+                parameter_values(&PartInductionNet::seeded(&config, &Device::flex(), 3)) != expected
+            })
+            .count();
+        done.store(true, Ordering::Relaxed);
+        assert_eq!(differing, 0, "of 30 seeded networks beside the loads");
+    });
+}
+
+#[test]
 fn a_run_with_init_weights_starts_from_them() {
     let dir = tempfile::tempdir().expect("a temporary folder");
     let file = dir.path().join("start.bpk");

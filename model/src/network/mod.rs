@@ -5,7 +5,8 @@
 //! neighbourhoods and 3-NN weights as plain indices), [`pointnet`] (the PointNet++ layers
 //! that gather by those indices, [`norm`] fusing a layer's bias, layer norm and ReLU when
 //! training on the CPU), the [`backbone`] they build, and [`rotation`], the differentiable
-//! projection onto rotations. [`config`] holds every size.
+//! projection onto rotations. [`config`] holds every size; [`rng`] keeps seeded
+//! initialisation independent of other threads.
 
 pub mod backbone;
 pub mod config;
@@ -15,6 +16,7 @@ pub mod input;
 pub mod norm;
 pub mod pointnet;
 pub mod predict;
+pub mod rng;
 pub mod rotation;
 pub mod sampling;
 pub mod segmentation;
@@ -69,7 +71,7 @@ pub struct SegmentationOutput {
 impl PartInductionNet {
     /// A freshly initialised network with `config`'s sizes (weights from burn's default
     /// initialisers, seeded by the device's RNG).
-    pub fn new(config: &NetworkConfig, device: &Device) -> Self {
+    pub(crate) fn new(config: &NetworkConfig, device: &Device) -> Self {
         Self {
             correspondence: CorrespondenceModule::new(config, device),
             flow: FlowModule::new(config, device),
@@ -82,16 +84,10 @@ impl PartInductionNet {
         }
     }
 
-    /// A network initialised from `seed`: the same seed gives the same weights. burn seeds
-    /// one process-wide generator and draws parameters lazily, so this holds a lock while
-    /// it seeds, builds and materialises every parameter (by taking its record).
+    /// A network initialised from `seed`: the same seed gives the same weights, whatever
+    /// other threads do ([`rng`] explains why that takes care).
     pub fn seeded(config: &NetworkConfig, device: &Device, seed: u64) -> Self {
-        static INIT: std::sync::Mutex<()> = std::sync::Mutex::new(());
-        let _turn = INIT.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
-        device.seed(seed);
-        let net = Self::new(config, device);
-        let record = net.clone().into_record();
-        net.load_record(record)
+        rng::seeded(device, seed, || rng::materialised(Self::new(config, device)))
     }
 
     /// Correspondences and flow on the correspondence subsets of P and Q.

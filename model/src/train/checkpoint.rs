@@ -111,7 +111,9 @@ pub fn load_weights(
     device: &Device,
 ) -> Result<PartInductionNet, CheckpointError> {
     let rec = ModuleRecord::load(path).map_err(record(path))?;
-    let net = PartInductionNet::new(config, device);
+    // Building the network draws initial weights from burn's shared generator: take the
+    // generator's turn, so a network being seeded on another thread is not disturbed.
+    let net = crate::network::rng::exclusive(|| PartInductionNet::new(config, device));
     net.try_load_record(rec).map_err(record(path))
 }
 

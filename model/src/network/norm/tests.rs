@@ -1,19 +1,21 @@
 use super::*;
+use crate::network::rng;
 use burn::module::Param;
 use burn::nn::{LayerNormConfig, LinearConfig};
 use burn::tensor::Distribution;
 
 /// A layer of 10 inputs and 24 outputs with random bias, γ and β.
 fn layer(device: &Device) -> (Linear, LayerNorm) {
-    let mut linear = LinearConfig::new(10, 24).init(device);
-    linear.bias =
-        Some(Param::from_tensor(Tensor::random([24], Distribution::Normal(0.0, 0.5), device)));
-    let mut norm = LayerNormConfig::new(24).init(device);
-    // γ and β away from 1 and 0, so that every term of the gradient matters.
-    norm.gamma = Param::from_tensor(Tensor::random([24], Distribution::Uniform(0.5, 1.5), device));
-    norm.beta =
-        Some(Param::from_tensor(Tensor::random([24], Distribution::Normal(0.0, 0.5), device)));
-    (linear, norm)
+    rng::seeded(device, 1, || {
+        let mut linear = rng::materialised(LinearConfig::new(10, 24).init(device));
+        let random = |d| Param::from_tensor(Tensor::random([24], d, device));
+        linear.bias = Some(random(Distribution::Normal(0.0, 0.5)));
+        let mut norm = LayerNormConfig::new(24).init(device);
+        // γ and β away from 1 and 0, so that every term of the gradient matters.
+        norm.gamma = random(Distribution::Uniform(0.5, 1.5));
+        norm.beta = Some(random(Distribution::Normal(0.0, 0.5)));
+        (linear, norm)
+    })
 }
 
 fn values<const D: usize>(t: Tensor<D>) -> Vec<f32> {
@@ -51,8 +53,12 @@ fn reference(layer: &Linear, norm: &LayerNorm, x: Tensor<3>) -> Tensor<3> {
 fn matches_linear_layer_norm_relu_in_values_and_gradients() {
     let device = Device::flex().autodiff();
     // 300 rows: more than one block, and a last block that is not full.
-    let x = Tensor::<3>::random([3, 100, 10], Distribution::Normal(0.5, 2.0), &device);
-    let weights = Tensor::<3>::random([3, 100, 24], Distribution::Normal(0.0, 1.0), &device);
+    let (x, weights) = rng::seeded(&device, 2, || {
+        (
+            Tensor::<3>::random([3, 100, 10], Distribution::Normal(0.5, 2.0), &device),
+            Tensor::<3>::random([3, 100, 24], Distribution::Normal(0.0, 1.0), &device),
+        )
+    });
     let layer = layer(&device);
     assert!(is_fused(&layer.0, &layer.1, &x));
     let fused = run(&layer, &x, &weights, linear_norm_relu);
@@ -72,7 +78,9 @@ fn matches_linear_layer_norm_relu_in_values_and_gradients() {
 #[test]
 fn inference_keeps_burns_operations_bit_for_bit() {
     let device = Device::flex();
-    let x = Tensor::<3>::random([2, 35, 10], Distribution::Normal(0.0, 1.0), &device);
+    let x = rng::seeded(&device, 3, || {
+        Tensor::<3>::random([2, 35, 10], Distribution::Normal(0.0, 1.0), &device)
+    });
     let (linear, norm) = layer(&device);
     assert!(!is_fused(&linear, &norm, &x));
     let a = values(linear_norm_relu(&linear, &norm, x.clone()));

@@ -1,4 +1,5 @@
 use super::*;
+use crate::network::rng;
 use rand::{Rng, SeedableRng};
 
 fn cloud(n: usize, seed: u64) -> Vec<f32> {
@@ -15,7 +16,7 @@ fn linear_on_flattened_rows_is_burns_linear_with_the_same_gradients() {
     // In training the rows are flattened into one product: the same dot products, and
     // the same weight gradients up to the order of the sums.
     let device = Device::flex().autodiff();
-    let layer = relu_layer(32, 48).init(&device);
+    let layer = rng::seeded(&device, 1, || rng::materialised(relu_layer(32, 48).init(&device)));
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(3);
     let values: Vec<f32> = (0..4 * 16 * 16 * 32).map(|_| rng.random_range(-1.0f32..1.0)).collect();
     let pairs = Tensor::<4>::from_data(TensorData::new(values, [4, 16, 16, 32]), &device);
@@ -50,8 +51,10 @@ fn permuting_the_points_permutes_the_dense_outputs() {
     let permutation: Vec<usize> = (0..n).map(|i| (i * 7 + 3) % n).collect();
     let permuted: Vec<f32> =
         permutation.iter().flat_map(|&i| values[i * 3..i * 3 + 3].to_vec()).collect();
-    let sa = SetAbstractionConfig::single(12, 0.4, 8, vec![16, 16]).init(0, &device);
-    let fp = FeaturePropagation::new(16, &[8], &device);
+    let (sa, fp) = rng::seeded(&device, 2, || {
+        let sa = SetAbstractionConfig::single(12, 0.4, 8, vec![16, 16]).init(0, &device);
+        (rng::materialised(sa), rng::materialised(FeaturePropagation::new(16, &[8], &device)))
+    });
     let run = |v: Vec<f32>| {
         let xyz = tensor(v, [1, n, 3], &device);
         let (centres, f) = sa.forward(xyz.clone(), None).expect("enough points");
@@ -70,7 +73,9 @@ fn gradients_reach_the_grouped_features() {
     let device = Device::flex().autodiff();
     let xyz = tensor(cloud(32, 2), [1, 32, 3], &device);
     let features = tensor(cloud(32, 3), [1, 32, 3], &device).require_grad();
-    let sa = SetAbstractionConfig::single(8, 0.5, 6, vec![8]).init(3, &device);
+    let sa = rng::seeded(&device, 3, || {
+        rng::materialised(SetAbstractionConfig::single(8, 0.5, 6, vec![8]).init(3, &device))
+    });
     let (_, out) = sa.forward(xyz, Some(features.clone())).expect("enough points");
     let grads = out.sum().backward();
     let g = features.grad(&grads).expect("a gradient for the features");
@@ -88,11 +93,15 @@ fn gradients_reach_the_grouped_features() {
 #[test]
 fn too_small_clouds_are_errors_not_panics() {
     let device = Device::flex();
-    let sa = SetAbstractionConfig::single(16, 0.4, 8, vec![8]).init(0, &device);
+    let sa = rng::seeded(&device, 4, || {
+        rng::materialised(SetAbstractionConfig::single(16, 0.4, 8, vec![8]).init(0, &device))
+    });
     let err = sa.forward(tensor(cloud(10, 4), [1, 10, 3], &device), None).expect_err("10 < 16");
     assert_eq!(err, SamplingError::TooFewPoints { wanted: 16, points: 10 });
     let same = tensor(vec![0.25; 30], [1, 10, 3], &device);
-    let small = SetAbstractionConfig::single(4, 0.4, 8, vec![8]).init(0, &device);
+    let small = rng::seeded(&device, 5, || {
+        rng::materialised(SetAbstractionConfig::single(4, 0.4, 8, vec![8]).init(0, &device))
+    });
     let (_, f) = small.forward(same, None).expect("duplicates are fine");
     assert!(rows(f).iter().flatten().all(|v| v.is_finite()));
 }
@@ -100,7 +109,8 @@ fn too_small_clouds_are_errors_not_panics() {
 #[test]
 fn global_abstraction_pools_each_cloud() {
     let device = Device::flex();
-    let g = GlobalAbstraction::new(2, &[8, 4], &device);
+    let g =
+        rng::seeded(&device, 6, || rng::materialised(GlobalAbstraction::new(2, &[8, 4], &device)));
     let out = g.forward(
         tensor(cloud(20, 5), [2, 10, 3], &device),
         tensor(cloud(20, 6)[..40].to_vec(), [2, 10, 2], &device),
