@@ -6,7 +6,8 @@
 //! - [`network`]: the network itself, [`network::PartInductionNet`] — the PointNet++
 //!   building blocks, the correspondence proposal and flow modules (4.1, 4.2), the
 //!   [`network::segmentation`] module (hypotheses, support, RPEN; 4.3), the single forward
-//!   pass ([`network::predict`]) and every size ([`network::config`]).
+//!   pass ([`network::predict`]), every size ([`network::config`]) and [`network::rng`], the
+//!   one way to draw from burn's process-wide random number generator.
 //! - [`train`] (5): the stage-wise trainer and its data-parallel step, with the pairs as
 //!   tensors with their truth ([`train::batch`]), the losses and each stage's objective, the fixed
 //!   validation set, the training config ([`train::config`]), checkpoints, the log and the
@@ -20,9 +21,10 @@
 //! ```
 //! use burn::prelude::*;
 //! use model::network::pointnet::{SetAbstractionConfig, FeaturePropagation};
+//! use model::network::rng;
 //!
 //! let device = Device::flex();
-//! let xyz = Tensor::<3>::random([1, 64, 3], burn::tensor::Distribution::Default, &device);
+//! let xyz = rng::random(&device, 7, [1, 64, 3], burn::tensor::Distribution::Default);
 //! let sa = SetAbstractionConfig::single(16, 0.4, 8, vec![32, 32]).init(0, &device);
 //! let (centres, features) = sa.forward(xyz.clone(), None).expect("64 points");
 //! assert_eq!(features.dims(), [1, 16, 32]);

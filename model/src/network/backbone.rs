@@ -157,13 +157,10 @@ mod tests {
     #[test]
     fn every_input_point_gets_an_output_and_gradients_reach_the_features() {
         let device = Device::flex().autodiff();
-        let (net, xyz, f) = rng::seeded(&device, 1, || {
-            (
-                rng::materialised(config().init(2, 5, false, &device)),
-                Tensor::<3>::random([2, 40, 3], Distribution::Default, &device),
-                Tensor::<3>::random([2, 40, 2], Distribution::Default, &device).require_grad(),
-            )
-        });
+        let net =
+            rng::seeded(&device, 1, || rng::materialised(config().init(2, 5, false, &device)));
+        let xyz = rng::random(&device, 2, [2, 40, 3], Distribution::Default);
+        let f = rng::random(&device, 3, [2, 40, 2], Distribution::Default).require_grad();
         let out = net.forward(xyz, Some(f.clone())).expect("40 points");
         assert_eq!(out.dims(), [2, 40, 5]);
         let grads = out.powf_scalar(2.0).sum().backward();
@@ -180,7 +177,7 @@ mod tests {
     #[test]
     fn too_few_points_is_an_error() {
         let device = Device::flex();
-        let net = rng::seeded(&device, 2, || rng::materialised(config().init(0, 3, true, &device)));
+        let net = rng::seeded(&device, 4, || rng::materialised(config().init(0, 3, true, &device)));
         let xyz = Tensor::<3>::from_data(TensorData::new(vec![0.1f32; 30], [1, 10, 3]), &device);
         assert!(matches!(net.forward(xyz, None), Err(SamplingError::TooFewPoints { .. })));
     }

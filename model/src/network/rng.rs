@@ -12,7 +12,8 @@
 use std::sync::{Mutex, PoisonError};
 
 use burn::module::Module;
-use burn::prelude::Device;
+use burn::prelude::{Device, Tensor};
+use burn::tensor::Distribution;
 
 static TURN: Mutex<()> = Mutex::new(());
 
@@ -31,6 +32,19 @@ pub fn seeded<T>(device: &Device, seed: u64, draw: impl FnOnce() -> T) -> T {
         device.seed(seed);
         draw()
     })
+}
+
+/// A tensor of `shape` drawn from `distribution` by burn's generator seeded with `seed`:
+/// the same seed gives the same values whatever other threads do. (`clippy.toml` bans
+/// `Tensor::random` everywhere else.)
+pub fn random<const D: usize>(
+    device: &Device,
+    seed: u64,
+    shape: [usize; D],
+    distribution: Distribution,
+) -> Tensor<D> {
+    #[allow(clippy::disallowed_methods)] // drawn under the lock
+    seeded(device, seed, || Tensor::random(shape, distribution, device))
 }
 
 /// `module` with every parameter drawn now rather than when it is first read.

@@ -6,16 +6,16 @@ use burn::tensor::Distribution;
 
 /// A layer of 10 inputs and 24 outputs with random bias, γ and β.
 fn layer(device: &Device) -> (Linear, LayerNorm) {
-    rng::seeded(device, 1, || {
-        let mut linear = rng::materialised(LinearConfig::new(10, 24).init(device));
-        let random = |d| Param::from_tensor(Tensor::random([24], d, device));
-        linear.bias = Some(random(Distribution::Normal(0.0, 0.5)));
-        let mut norm = LayerNormConfig::new(24).init(device);
-        // γ and β away from 1 and 0, so that every term of the gradient matters.
-        norm.gamma = random(Distribution::Uniform(0.5, 1.5));
-        norm.beta = Some(random(Distribution::Normal(0.0, 0.5)));
-        (linear, norm)
-    })
+    let (mut linear, mut norm) = rng::seeded(device, 1, || {
+        let linear = rng::materialised(LinearConfig::new(10, 24).init(device));
+        (linear, LayerNormConfig::new(24).init(device))
+    });
+    let random = |seed, d| Param::from_tensor(rng::random(device, seed, [24], d));
+    linear.bias = Some(random(2, Distribution::Normal(0.0, 0.5)));
+    // γ and β away from 1 and 0, so that every term of the gradient matters.
+    norm.gamma = random(3, Distribution::Uniform(0.5, 1.5));
+    norm.beta = Some(random(4, Distribution::Normal(0.0, 0.5)));
+    (linear, norm)
 }
 
 fn values<const D: usize>(t: Tensor<D>) -> Vec<f32> {
@@ -53,12 +53,8 @@ fn reference(layer: &Linear, norm: &LayerNorm, x: Tensor<3>) -> Tensor<3> {
 fn matches_linear_layer_norm_relu_in_values_and_gradients() {
     let device = Device::flex().autodiff();
     // 300 rows: more than one block, and a last block that is not full.
-    let (x, weights) = rng::seeded(&device, 2, || {
-        (
-            Tensor::<3>::random([3, 100, 10], Distribution::Normal(0.5, 2.0), &device),
-            Tensor::<3>::random([3, 100, 24], Distribution::Normal(0.0, 1.0), &device),
-        )
-    });
+    let x = rng::random(&device, 5, [3, 100, 10], Distribution::Normal(0.5, 2.0));
+    let weights = rng::random(&device, 6, [3, 100, 24], Distribution::Normal(0.0, 1.0));
     let layer = layer(&device);
     assert!(is_fused(&layer.0, &layer.1, &x));
     let fused = run(&layer, &x, &weights, linear_norm_relu);
@@ -78,9 +74,7 @@ fn matches_linear_layer_norm_relu_in_values_and_gradients() {
 #[test]
 fn inference_keeps_burns_operations_bit_for_bit() {
     let device = Device::flex();
-    let x = rng::seeded(&device, 3, || {
-        Tensor::<3>::random([2, 35, 10], Distribution::Normal(0.0, 1.0), &device)
-    });
+    let x = rng::random(&device, 7, [2, 35, 10], Distribution::Normal(0.0, 1.0));
     let (linear, norm) = layer(&device);
     assert!(!is_fused(&linear, &norm, &x));
     let a = values(linear_norm_relu(&linear, &norm, x.clone()));
