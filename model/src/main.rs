@@ -12,7 +12,8 @@ use model::io::animation::{write_animation, AnimationParams};
 use model::io::commands::{
     describe, input_from_files, load_network_folder, pair_from_dataset, write_segment_plys,
 };
-use model::train::checkpoint::{load_weights, CheckpointDir};
+use model::train::average::average_weights;
+use model::train::checkpoint::{load_weights, save_weights, CheckpointDir};
 use model::train::config::TrainConfig;
 use model::train::validation::{score, validation_pairs};
 use model::train::{Budget, RunPaths, Trainer};
@@ -67,6 +68,19 @@ enum Command {
         /// Weights file (burn record, e.g. checkpoints/cpu/best.bpk).
         #[arg(long)]
         weights: PathBuf,
+    },
+    /// Average several weights files of one network parameter by parameter (a "model soup":
+    /// checkpoints fine-tuned from the same weights), into a new weights file.
+    Average {
+        /// Config file, or a built-in name; its network sizes must match every file.
+        #[arg(long)]
+        config: String,
+        /// The weights files, averaged in this order.
+        #[arg(long, num_args = 1.., required = true)]
+        weights: Vec<PathBuf>,
+        /// Where to write the averaged weights (replaced whole, or not at all).
+        #[arg(long)]
+        out: PathBuf,
     },
     /// Run the inference procedure on two point clouds or meshes (.ply or .obj): print the
     /// parts, motions and joints, and write p_segments.ply and q_segments.ply.
@@ -263,6 +277,13 @@ fn main() -> Result<()> {
                 s.iou,
                 s.support_iou
             );
+        }
+        Command::Average { config, weights, out } => {
+            let config = TrainConfig::load(&config)?;
+            let net = average_weights(&config.network, &weights, &Device::flex())
+                .context("averaging the weights")?;
+            save_weights(&net, &out).with_context(|| format!("writing {}", out.display()))?;
+            println!("wrote the mean of {} weights files to {}", weights.len(), out.display());
         }
         Command::Infer { p, q, out, run } => {
             let input = input_from_files(&p, &q, run.points).context("reading the input files")?;

@@ -6,8 +6,8 @@
 //! per-pair draws, the batch's loss and gradients over data-parallel shards); [`batch`] turns
 //! pairs into tensors with their truth on the subsets, [`losses`] and [`objective`] are each
 //! stage's terms and weights, [`validation`] the fixed validation set and its scores,
-//! [`config`] the training settings, and [`checkpoint`], [`log`] and [`plot`] what a run
-//! writes.
+//! [`config`] the training settings, [`checkpoint`], [`log`] and [`plot`] what a run
+//! writes, and [`average`] the mean of several checkpoints' weights.
 
 use std::path::PathBuf;
 use std::time::Instant;
@@ -29,6 +29,7 @@ use crate::train::config::TrainConfig;
 use crate::train::log::{Log, LogError, StepRow, ValidationRow};
 use crate::train::validation::{score, validation_pairs, ScoreError};
 
+pub mod average;
 pub mod batch;
 pub mod checkpoint;
 pub mod config;
