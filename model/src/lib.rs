@@ -10,8 +10,8 @@
 //!   one way to draw from burn's process-wide random number generator.
 //! - [`train`] (5): the stage-wise trainer and its data-parallel step, with the pairs as
 //!   tensors with their truth ([`train::batch`]), the losses and each stage's objective, the fixed
-//!   validation set, the training config ([`train::config`]), checkpoints, the log and the
-//!   loss plot.
+//!   validation set, the training config ([`train::config`]), checkpoints, the log, the
+//!   loss plot and the mean of several checkpoints' weights ([`train::average`]).
 //! - [`inference`] (4.4): the iterative procedure, the rotation search over 48 initial
 //!   orientations, hard labels by graph cut ([`inference::labels`]), and
 //!   [`inference::method`], the network as the evaluator's method and segmenter.
