@@ -13,27 +13,51 @@ use crate::transform::{rotation_about, Similarity};
 /// the line x = 1 (axis y); in Q the second square is turned by `angle` radians. Q holds the
 /// same surface samples as P, in the same order, so `corr_index[i] == i`.
 pub fn hinge_pair(id: &str, side: usize, angle: Real) -> Pair {
-    let pivot = Point3::new(1.0, 0.0, 0.0);
-    let hinge = rotation_about(&pivot, &Vector3::y(), angle);
     let step = 1.0 / side.max(2).saturating_sub(1) as Real;
-    let mut object_p = Vec::new();
-    let mut parts = Vec::new();
-    for part in 0..2u8 {
+    let square = |part: u8| -> Vec<Point3> {
+        let mut points = Vec::with_capacity(side * side);
         for i in 0..side {
             for j in 0..side {
                 let (u, v) = (i as Real * step, j as Real * step);
                 // Part 1 starts just past the hinge so that no point sits on both parts.
                 let x = if part == 0 { u * 0.98 } else { 1.0 + 0.02 + u * 0.98 };
-                object_p.push(Point3::new(x, v, 0.1 * u * v));
-                parts.push(part);
+                points.push(Point3::new(x, v, 0.1 * u * v));
             }
         }
-    }
+        points
+    };
+    let pivot = Point3::new(1.0, 0.0, 0.0);
+    two_part_pair(id, "hinge", &square(0), &square(1), pivot, Vector3::y(), angle)
+}
+
+/// A two-part pair with exact ground truth: part 0 (`base`) stays, part 1 (`moving`) turns
+/// by `angle` radians about `axis` (a zero axis reads as z) through `pivot`, in object
+/// units; Q holds the same samples as P in the same order (`corr_index[i] == i`), and each
+/// cloud is normalised on its own. The pair's category is `category`.
+///
+/// # Panics
+/// If the points do not span a box (all equal), which no test shape does.
+pub fn two_part_pair(
+    id: &str,
+    category: &str,
+    base: &[Point3],
+    moving: &[Point3],
+    pivot: Point3,
+    axis: Vector3,
+    angle: Real,
+) -> Pair {
+    let hinge = rotation_about(&pivot, &axis, angle);
+    let axis = crate::math::unit_or(&axis, Vector3::z());
+    let parts: Vec<PartId> = [(0, base.len()), (1, moving.len())]
+        .into_iter()
+        .flat_map(|(part, n)| std::iter::repeat_n(part, n))
+        .collect();
     let motions_obj = [Isometry3::identity(), hinge];
+    let object_p: Vec<Point3> = base.iter().chain(moving).copied().collect();
     let object_q: Vec<Point3> =
-        object_p.iter().zip(&parts).map(|(p, &k)| motions_obj[usize::from(k)] * p).collect();
-    let p = Cloud::normalise(&object_p).expect("the grid spans a box");
-    let q = Cloud::normalise(&object_q).expect("the grid spans a box");
+        object_p.iter().zip(&parts).map(|(x, &k)| motions_obj[usize::from(k)] * x).collect();
+    let p = Cloud::normalise(&object_p).expect("the parts span a box");
+    let q = Cloud::normalise(&object_q).expect("the parts span a box");
     let motions: Vec<Similarity> = motions_obj
         .iter()
         .map(|m| Similarity::between_normalised(m, &p.normalisation, &q.normalisation))
@@ -44,16 +68,16 @@ pub fn hinge_pair(id: &str, side: usize, angle: Real) -> Pair {
     let joint = JointTruth {
         part: 1,
         kind: JointKind::Revolute,
-        axis_p: Vector3::y(),
+        axis_p: axis,
         pivot_p: p.normalisation.apply(&pivot),
-        axis_q: Vector3::y(),
+        axis_q: axis,
         pivot_q: q.normalisation.apply(&pivot),
         value_p: 0.0,
         value_q: angle,
     };
     let truth = GroundTruth {
         part_p: parts.clone(),
-        part_q: parts as Vec<PartId>,
+        part_q: parts,
         motions,
         flow,
         corr_mask: vec![true; n],
@@ -61,15 +85,14 @@ pub fn hinge_pair(id: &str, side: usize, angle: Real) -> Pair {
         joints: vec![joint],
     };
     let provenance = Provenance {
-        category: "hinge".into(),
+        category: category.into(),
         object_id: 0,
         articulation_p: 0,
         articulation_q: 1,
         seed: 0,
         generator_version: env!("CARGO_PKG_VERSION").into(),
-
         ..Default::default()
     };
     Pair::new(PairInput { id: id.into(), kind: PairKind::Sf2f, p, q }, truth, provenance)
-        .expect("the hinge pair satisfies every invariant by construction")
+        .expect("the two-part pair satisfies every invariant by construction")
 }

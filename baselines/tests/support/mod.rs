@@ -10,13 +10,11 @@ use baselines::jlinkage::JLinkageError;
 use baselines::ransac::SeqRansacError;
 use baselines::registration::{EdError, IcpError, NearestError, NrrError};
 use baselines::spectral::SpectralError;
-use pairs::cloud::Cloud;
-use pairs::joints::{JointKind, JointTruth};
-use pairs::math::{Isometry3, Point3, Real, Vector3};
+use pairs::math::{Point3, Real, Vector3};
 use pairs::metrics::{epe, matched_iou};
 use pairs::synthetic::hinge_pair;
-use pairs::transform::{rotation_about, rotation_error_deg, Similarity};
-use pairs::{GroundTruth, MethodError, Pair, PairInput, PairKind, Prediction, Provenance};
+use pairs::transform::rotation_error_deg;
+use pairs::{MethodError, Pair, PairInput, Prediction};
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
 
@@ -45,68 +43,6 @@ pub fn box_surface(lo: Point3, hi: Point3, step: Real) -> Vec<Point3> {
     points
 }
 
-/// A two-part pair built like `pairs::synthetic::hinge_pair`: part 0 (`base`) stays, part 1
-/// (`moving`) turns by `angle` about `axis` through `pivot` (object units); Q holds the same
-/// samples as P in the same order, and each cloud is normalised on its own.
-pub fn two_part_pair(
-    id: &str,
-    base: &[Point3],
-    moving: &[Point3],
-    pivot: Point3,
-    axis: Vector3,
-    angle: Real,
-) -> Pair {
-    let hinge = rotation_about(&pivot, &axis, angle);
-    let parts: Vec<u8> = [(0, base.len()), (1, moving.len())]
-        .into_iter()
-        .flat_map(|(part, n)| std::iter::repeat_n(part, n))
-        .collect();
-    let motions_obj = [Isometry3::identity(), hinge];
-    let object_p: Vec<Point3> = base.iter().chain(moving).copied().collect();
-    let object_q: Vec<Point3> =
-        object_p.iter().zip(&parts).map(|(x, &k)| motions_obj[usize::from(k)] * x).collect();
-    let p = Cloud::normalise(&object_p).expect("the parts span a box");
-    let q = Cloud::normalise(&object_q).expect("the parts span a box");
-    let motions: Vec<Similarity> = motions_obj
-        .iter()
-        .map(|m| Similarity::between_normalised(m, &p.normalisation, &q.normalisation))
-        .collect();
-    let flow =
-        p.points.iter().zip(&parts).map(|(x, &k)| motions[usize::from(k)].apply(x) - x).collect();
-    let n = object_p.len();
-    let joint = JointTruth {
-        part: 1,
-        kind: JointKind::Revolute,
-        axis_p: pairs::math::unit_or(&axis, Vector3::z()),
-        pivot_p: p.normalisation.apply(&pivot),
-        axis_q: pairs::math::unit_or(&axis, Vector3::z()),
-        pivot_q: q.normalisation.apply(&pivot),
-        value_p: 0.0,
-        value_q: angle,
-    };
-    let truth = GroundTruth {
-        part_p: parts.clone(),
-        part_q: parts,
-        motions,
-        flow,
-        corr_mask: vec![true; n],
-        corr_index: (0..n as i32).collect(),
-        joints: vec![joint],
-    };
-    let provenance = Provenance {
-        category: "lamp".into(),
-        object_id: 0,
-        articulation_p: 0,
-        articulation_q: 1,
-        seed: 0,
-        generator_version: "test".into(),
-
-        ..Default::default()
-    };
-    Pair::new(PairInput { id: id.into(), kind: PairKind::Sf2f, p, q }, truth, provenance)
-        .expect("the planted pair satisfies every invariant by construction")
-}
-
 /// A planted articulated "desk lamp" (800 points): a 1 x 0.6 x 0.3 box base with an upright
 /// 0.2 x 0.2 x 0.86 arm standing off-centre on it, the arm turned by `angle` about `axis`
 /// through the foot of the arm. Unlike the hinge's two flat, nearly interchangeable squares,
@@ -115,7 +51,8 @@ pub fn two_part_pair(
 pub fn lamp(axis: Vector3, angle: Real) -> Pair {
     let base = box_surface(Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 0.6, 0.3), 0.06);
     let arm = box_surface(Point3::new(0.75, 0.2, 0.34), Point3::new(0.95, 0.4, 1.2), 0.06);
-    two_part_pair("lamp", &base, &arm, Point3::new(0.85, 0.3, 0.34), axis, angle)
+    let pivot = Point3::new(0.85, 0.3, 0.34);
+    pairs::synthetic::two_part_pair("lamp", "lamp", &base, &arm, pivot, axis, angle)
 }
 
 /// EPE of a flow method's prediction against the pair's true flow.
