@@ -17,27 +17,30 @@ use pairs::math::Matrix3;
 #[global_allocator]
 static ALLOCATOR: tikv_jemallocator::Jemalloc = tikv_jemallocator::Jemalloc;
 
-/// The fused layer norm + ReLU of training (`model::network::norm`) on one pair tensor's worth of rows
-/// (4 pairs x 128 x 128 points, 64 channels).
+/// The fused layer (`model::network::norm`: product, bias, layer norm, ReLU) on one pair
+/// tensor's worth of rows (4 pairs x 128 x 128 points, 64 channels in and out).
 fn norm(c: &mut Criterion) {
     let (rows, channels) = (4 * 128 * 128, 64);
     let x: Vec<f32> =
         (0..rows * channels).map(|i| ((i * 7919) % 1009) as f32 / 500.0 - 1.0).collect();
-    let grad: Vec<f32> = x.iter().map(|v| v * 0.5 - 0.1).collect();
+    let weight: Vec<f32> =
+        (0..channels * channels).map(|i| ((i * 31) % 61) as f32 / 240.0 - 0.125).collect();
     let gamma: Vec<f32> = (0..channels).map(|i| 0.5 + i as f32 / channels as f32).collect();
     let beta: Vec<f32> = (0..channels).map(|i| i as f32 / channels as f32 - 0.5).collect();
     let bias: Vec<f32> = beta.iter().map(|b| b * 0.1).collect();
     let params = model::network::norm::Channels { bias: &bias, gamma: &gamma, beta: &beta };
+    let (out, z) = model::network::norm::forward(&x, &weight, &params, true);
+    let grad: Vec<f32> = out.iter().map(|v| v * 0.5 - 0.1).collect();
     let mut group = c.benchmark_group("norm");
     group.sample_size(20);
     group.bench_function("forward_65536x64", |b| {
-        b.iter(|| model::network::norm::forward(&x, &params))
+        b.iter(|| model::network::norm::forward(&x, &weight, &params, true))
     });
     group.bench_function("backward_65536x64", |b| {
-        let mut dx = grad.clone();
+        let mut dz = grad.clone();
         b.iter(|| {
-            dx.copy_from_slice(&grad);
-            model::network::norm::backward(&x, &params, &mut dx)
+            dz.copy_from_slice(&grad);
+            model::network::norm::backward(&x, &weight, &z, &params, &mut dz, true)
         })
     });
     group.finish();

@@ -9,6 +9,7 @@ use burn::tensor::activation;
 use crate::network::backbone::Backbone;
 use crate::network::config::NetworkConfig;
 use crate::network::pointnet::{linear, relu_layer, Head, SharedMlp};
+use crate::network::pool::max_pool;
 use crate::network::sampling::SamplingError;
 
 /// What the module outputs for a batch of pairs.
@@ -68,7 +69,7 @@ impl CorrespondenceModule {
         let b = linear(&self.pair_q, u_q).unsqueeze_dim::<4>(1); // [batch, 1, m, w]
         let h = self.pair.forward(activation::relu(a + b)); // [batch, m, m, w]
         let logits = self.score.forward(h.clone()).reshape([batch, m, m]);
-        let mask_logits = self.mask.forward(h.max_dim(2)).reshape([batch, m]);
+        let mask_logits = self.mask.forward(max_pool(h)).reshape([batch, m]);
         Ok(Correspondence { logits, mask_logits })
     }
 }

@@ -6,6 +6,7 @@ use burn::prelude::*;
 use crate::network::backbone::Backbone;
 use crate::network::config::NetworkConfig;
 use crate::network::pointnet::SharedMlp;
+use crate::network::pool::max_pool;
 use crate::network::sampling::SamplingError;
 
 /// The flow module.
@@ -38,7 +39,7 @@ impl FlowModule {
         let m = p.dims()[1];
         let offsets = q.unsqueeze_dim::<4>(1) - p.clone().unsqueeze_dim::<4>(2); // [batch, m, m, 3]
         let input = Tensor::cat(vec![offsets, matching.unsqueeze_dim::<4>(3) * m as f32], 3);
-        let pooled = self.pair.forward(input).max_dim(2).squeeze_dim::<3>(2); // [batch, m, w]
+        let pooled = max_pool(self.pair.forward(input)).squeeze_dim::<3>(2); // [batch, m, w]
         self.points.forward(p, Some(pooled))
     }
 }

@@ -15,6 +15,7 @@ pub mod flow;
 pub mod input;
 pub mod norm;
 pub mod pointnet;
+pub mod pool;
 pub mod predict;
 pub mod rng;
 pub mod rotation;

@@ -1,27 +1,31 @@
-//! A shared-MLP layer's bias, layer normalisation and ReLU as one operation with its own
-//! backward pass, for training on the CPU (the flex backend).
+//! A shared-MLP layer (matrix product, bias, layer normalisation, ReLU) as one operation with
+//! its own backward pass, for training and inference on the CPU (the flex backend).
 //!
 //! Every layer of a [`crate::network::pointnet::SharedMlp`] is `Linear`, layer norm, ReLU. burn's
 //! autodiff records the bias as a broadcast addition, layer norm as the nine tensor
 //! operations it is made of (mean, centre, square, mean, add, square root, divide, scale,
 //! shift) and ReLU as one more, so a layer on a pair tensor of 16-67 MB made about eleven
 //! passes over it forward and twice that backward: a `perf` profile of a stage-3 step put
-//! about a third of it in operations of those kinds. Here the matrix product runs alone (one product on the
-//! flattened rows), and the rest is one sweep over the rows forward (each row plus the
-//! bias, its mean and variance, then the normalised, scaled, shifted and clipped values)
-//! and one backward: it keeps only the product's output and the three parameter vectors,
-//! recomputes each row's statistics, and writes the input's gradient over the output's
-//! (the standard layer-norm gradient `r (ĝ - mean(ĝ) - x̂ mean(ĝ x̂))` with `ĝ = γ g` where
-//! the output is positive) while it sums the gradients of the bias, `γ` and `β`. Rows are
-//! cut into blocks of [`ROWS_PER_TASK`] whatever the thread count, and the blocks' sums are
-//! added in block order, so the result does not depend on the number of threads; the loops
-//! are compiled for AVX2 and FMA as well and picked at run time (`pulp`).
+//! about a third of it in operations of those kinds. And burn's matrix product on the flex
+//! backend allocates its output zeroed and then copies it once more (to align it), and its
+//! weight gradient is one long product that two threads share badly.
+//!
+//! Here the rows are cut into blocks of [`ROWS_PER_TASK`], whatever the thread count, and
+//! each block goes through the whole layer while it is in cache. Forward: the block's
+//! product with the weight (faer, on the block's thread), then one sweep over its rows (each
+//! row plus the bias, its mean and variance, then the normalised, scaled, shifted and
+//! clipped values). Backward: it keeps the input, the product and the parameters, recomputes
+//! each row's statistics and writes the product's gradient over the output's (the standard
+//! layer-norm gradient `r (ĝ - mean(ĝ) - x̂ mean(ĝ x̂))` with `ĝ = γ g` where the output is
+//! positive), then takes the input's gradient (a product with the weight's transpose) and
+//! the block's share of the weight's, bias's, `γ`'s and `β`'s. The blocks' shares are added
+//! in block order, so the result does not depend on the number of threads; the loops are
+//! compiled for AVX2 and FMA as well and picked at run time (`pulp`).
 //!
 //! The operation gives the same values as burn's `Linear`, `LayerNorm` and `relu` up to
 //! rounding (a test compares the values and all five gradients). [`linear_norm_relu`] uses
-//! it only on the flex autodiff device, for `f32`, when the layer's weights track
-//! gradients: inference, and every other backend, keeps burn's operations, so the committed
-//! boards do not move by a rounding.
+//! it on the flex device, with or without autodiff, for `f32`: in training and in inference,
+//! so the committed boards are computed with it; every other backend keeps burn's operations.
 
 use burn::backend::autodiff::checkpoint::{base::Checkpointer, strategy::CheckpointStrategy};
 use burn::backend::autodiff::grads::Gradients;
@@ -32,6 +36,8 @@ use burn::nn::{LayerNorm, Linear};
 use burn::prelude::*;
 use burn::tensor::{activation, DType, TensorData};
 use burn_flex::FlexTensor;
+use faer::linalg::matmul::matmul;
+use faer::{Accum, MatMut, MatRef, Par};
 use rayon::prelude::*;
 
 use crate::network::pointnet::linear;
@@ -40,25 +46,26 @@ use crate::network::pointnet::linear;
 /// two agree).
 pub const EPSILON: f32 = 1e-5;
 
-/// Rows per block of work (and per partial sum of the `γ`, `β` gradients).
-pub const ROWS_PER_TASK: usize = 64;
+/// Rows per block of work (and per partial sum of the weight, bias, `γ` and `β` gradients).
+pub const ROWS_PER_TASK: usize = 256;
 
 /// The fused operation as a backend extension: implemented for flex and for autodiff on flex.
 #[backend_extension(Flex, Autodiff)]
 pub trait NormReluBackend: Backend {
-    /// `relu(γ (y - mean) / sqrt(var + ε) + β)` with `y = input + bias`, over the last
-    /// dimension.
-    fn layer_norm_relu(
+    /// `relu(γ (y - mean) / sqrt(var + ε) + β)` with `y = input · weight + bias`, over the
+    /// last dimension (`input: [rows, in]`, `weight: [in, out]`).
+    fn linear_norm_relu(
         input: FloatTensor<Self>,
+        weight: FloatTensor<Self>,
         bias: FloatTensor<Self>,
         gamma: FloatTensor<Self>,
         beta: FloatTensor<Self>,
     ) -> FloatTensor<Self>;
 }
 
-/// One layer of a shared MLP, `relu(norm(layer(x)))`: on the flex autodiff device in
-/// training, one matrix product on the flattened rows and then the fused operation (which
-/// also adds the layer's bias); burn's `Linear`, `LayerNorm` and `relu` everywhere else.
+/// One layer of a shared MLP, `relu(norm(layer(x)))`: on the flex device (in training and
+/// inference), the fused operation on the flattened rows; burn's `Linear`, `LayerNorm` and
+/// `relu` everywhere else.
 ///
 /// # Shapes
 /// `[..., input]` -> `[..., output]`
@@ -71,10 +78,10 @@ pub fn linear_norm_relu<const D: usize>(
         (Some(bias), Some(beta), true) => {
             let mut dims = x.dims();
             let rows: usize = dims[..D - 1].iter().product();
-            let y = x.reshape([rows, dims[D - 1]]).matmul(layer.weight.val());
-            dims[D - 1] = y.dims()[1];
-            let out: Tensor<2> = Tensor::from_dispatch(Dispatch::layer_norm_relu(
-                y.into_dispatch(),
+            dims[D - 1] = layer.weight.dims()[1];
+            let out: Tensor<2> = Tensor::from_dispatch(Dispatch::linear_norm_relu(
+                x.reshape([rows, layer.weight.dims()[0]]).into_dispatch(),
+                layer.weight.val().into_dispatch(),
                 bias.val().into_dispatch(),
                 norm.gamma.val().into_dispatch(),
                 beta.val().into_dispatch(),
@@ -86,81 +93,104 @@ pub fn linear_norm_relu<const D: usize>(
 }
 
 /// Whether [`linear_norm_relu`] takes the fused operation for this layer and input: `f32`
-/// on the flex autodiff device, weights tracking gradients, a bias and a `β`.
+/// on the flex device (with or without autodiff), a bias and a `β`.
 pub fn is_fused<const D: usize>(layer: &Linear, norm: &LayerNorm, x: &Tensor<D>) -> bool {
-    layer.weight.val().is_require_grad()
-        && layer.bias.is_some()
+    layer.bias.is_some()
         && norm.beta.is_some()
         && x.dtype() == DType::F32
+        && layer.weight.dims()[0] > 0
         && x.device().inner() == Device::flex()
 }
 
 impl NormReluBackend for Flex {
-    fn layer_norm_relu(
+    fn linear_norm_relu(
         input: FlexTensor,
+        weight: FlexTensor,
         bias: FlexTensor,
         gamma: FlexTensor,
         beta: FlexTensor,
     ) -> FlexTensor {
-        let shape = input.layout().shape().to_vec();
-        let x = F32Rows::new(input);
-        let (bias, gamma, beta) = (F32Rows::new(bias), F32Rows::new(gamma), F32Rows::new(beta));
+        let rows = input.layout().shape()[0];
+        let [x, weight, bias, gamma, beta] = [input, weight, bias, gamma, beta].map(F32Rows::new);
         let channels = Channels { bias: bias.values(), gamma: gamma.values(), beta: beta.values() };
-        FlexTensor::from_data(TensorData::new(forward(x.values(), &channels), shape))
+        let (out, _) = forward(x.values(), weight.values(), &channels, false);
+        FlexTensor::from_data(TensorData::new(out, [rows, channels.gamma.len()]))
     }
 }
 
 impl<C: CheckpointStrategy> NormReluBackend for Autodiff<Flex, C> {
-    fn layer_norm_relu(
+    fn linear_norm_relu(
         input: FloatTensor<Self>,
+        weight: FloatTensor<Self>,
         bias: FloatTensor<Self>,
         gamma: FloatTensor<Self>,
         beta: FloatTensor<Self>,
     ) -> FloatTensor<Self> {
-        /// The backward step; its state is the input and the three parameter vectors.
+        /// The backward step; its state is the input, the product (before the bias) and the
+        /// four parameters.
         #[derive(Debug)]
-        struct NormRelu;
+        struct LinearNormRelu;
 
-        impl Backward<Flex, 4> for NormRelu {
-            type State = [FlexTensor; 4];
+        impl Backward<Flex, 5> for LinearNormRelu {
+            type State = [FlexTensor; 6];
 
             fn backward(
                 self,
-                ops: Ops<Self::State, 4>,
+                ops: Ops<Self::State, 5>,
                 grads: &mut Gradients,
                 _checkpointer: &mut Checkpointer,
             ) {
-                let [node_x, node_bias, node_gamma, node_beta] = ops.parents;
+                let [node_x, node_weight, node_bias, node_gamma, node_beta] = ops.parents;
                 let grad = grads.consume::<Flex>(&ops.node);
-                let [input, bias, gamma, beta] = ops.state;
-                let shape = gamma.layout().shape().to_vec();
-                let x = F32Rows::new(input);
-                let (bias, gamma, beta) =
-                    (F32Rows::new(bias), F32Rows::new(gamma), F32Rows::new(beta));
+                let [input, weight, product, bias, gamma, beta] = ops.state;
+                let shapes = [&input, &weight, &bias].map(|t| t.layout().shape().to_vec());
+                let [x, weight, product, bias, gamma, beta] =
+                    [input, weight, product, bias, gamma, beta].map(F32Rows::new);
                 let channels =
                     Channels { bias: bias.values(), gamma: gamma.values(), beta: beta.values() };
-                // The input's gradient overwrites the output's (copied first if shared).
-                let mut dx = F32Rows::new(grad);
-                let sums = backward(x.values(), &channels, dx.values_mut());
-                if let Some(node) = node_x {
-                    grads.register::<Flex>(node.id, dx.tensor);
-                }
-                for (node, values) in [node_bias, node_gamma, node_beta].into_iter().zip(sums) {
+                // The product's gradient overwrites the output's (copied first if shared).
+                let mut dz = F32Rows::new(grad);
+                let [dx, dw, dbias, dgamma, dbeta] = backward(
+                    x.values(),
+                    weight.values(),
+                    product.values(),
+                    &channels,
+                    dz.values_mut(),
+                    node_x.is_some(),
+                );
+                let [x_shape, w_shape, c_shape] = shapes;
+                let shaped = [x_shape, w_shape, c_shape.clone(), c_shape.clone(), c_shape];
+                let nodes = [node_x, node_weight, node_bias, node_gamma, node_beta];
+                for ((node, values), shape) in
+                    nodes.into_iter().zip([dx, dw, dbias, dgamma, dbeta]).zip(shaped)
+                {
                     if let Some(node) = node {
-                        let tensor = FlexTensor::from_data(TensorData::new(values, shape.clone()));
+                        let tensor = FlexTensor::from_data(TensorData::new(values, shape));
                         grads.register::<Flex>(node.id, tensor);
                     }
                 }
             }
         }
 
-        let guards = [input.node(), bias.node(), gamma.node(), beta.node()];
-        let state = [input, bias, gamma, beta].map(|t| t.into_primitive());
-        let [x, bias, gamma, beta] = state.clone();
-        let output = Flex::layer_norm_relu(x, bias, gamma, beta);
-        match NormRelu.prepare::<C>(guards).compute_bound().stateful() {
-            OpsKind::Tracked(prep) => prep.finish(state, output),
-            OpsKind::UnTracked(prep) => prep.finish(output),
+        let guards = [input.node(), weight.node(), bias.node(), gamma.node(), beta.node()];
+        let [input, weight, bias, gamma, beta] =
+            [input, weight, bias, gamma, beta].map(|t| t.into_primitive());
+        let rows = input.layout().shape()[0];
+        let output = |x: &F32Rows, w: &F32Rows, channels: &Channels, keep| {
+            let (out, product) = forward(x.values(), w.values(), channels, keep);
+            let c = channels.gamma.len();
+            let tensor = |values| FlexTensor::from_data(TensorData::new(values, [rows, c]));
+            (tensor(out), tensor(product))
+        };
+        let rows_of = |t: &FlexTensor| F32Rows::new(t.clone());
+        let [x, w, b, g, be] = [&input, &weight, &bias, &gamma, &beta].map(rows_of);
+        let channels = Channels { bias: b.values(), gamma: g.values(), beta: be.values() };
+        match LinearNormRelu.prepare::<C>(guards).compute_bound().stateful() {
+            OpsKind::Tracked(prep) => {
+                let (out, product) = output(&x, &w, &channels, true);
+                prep.finish([input, weight, product, bias, gamma, beta], out)
+            }
+            OpsKind::UnTracked(prep) => prep.finish(output(&x, &w, &channels, false).0),
         }
     }
 }
@@ -178,19 +208,19 @@ pub struct Channels<'a> {
 }
 
 /// A flex tensor made contiguous, read as `f32`s.
-struct F32Rows {
+pub(crate) struct F32Rows {
     tensor: FlexTensor,
     range: std::ops::Range<usize>,
 }
 
 impl F32Rows {
-    fn new(tensor: FlexTensor) -> Self {
+    pub(crate) fn new(tensor: FlexTensor) -> Self {
         let tensor = tensor.to_contiguous();
         let (start, end) = tensor.layout().contiguous_offsets().unwrap_or((0, 0));
         Self { tensor, range: start..end }
     }
 
-    fn values(&self) -> &[f32] {
+    pub(crate) fn values(&self) -> &[f32] {
         &self.tensor.storage::<f32>()[self.range.clone()]
     }
 
@@ -228,95 +258,186 @@ fn statistics(row: &[f32]) -> (f32, f32) {
     (mean, 1.0 / (var + EPSILON).sqrt())
 }
 
-/// The forward pass on rows of `channels.gamma.len()` values.
-pub fn forward(x: &[f32], channels: &Channels) -> Vec<f32> {
-    let Channels { bias, gamma, beta } = *channels;
-    let c = gamma.len();
-    let mut out = vec![0.0f32; x.len()];
-    if c == 0 {
-        return out;
-    }
-    let arch = pulp::Arch::new();
-    out.par_chunks_mut(ROWS_PER_TASK * c).zip(x.par_chunks(ROWS_PER_TASK * c)).for_each(
-        |(out, x)| {
-            arch.dispatch(|| {
-                for (o, row) in out.chunks_exact_mut(c).zip(x.chunks_exact(c)) {
-                    // The row plus the bias, written to the output and normalised in place.
-                    for ((o, &v), &b) in o.iter_mut().zip(row).zip(bias) {
-                        *o = v + b;
-                    }
-                    let (mean, r) = statistics(o);
-                    for ((o, &g), &b) in o.iter_mut().zip(gamma).zip(beta) {
-                        *o = ((*o - mean) * r * g + b).max(0.0);
-                    }
-                }
-            })
-        },
-    );
-    out
+/// The number of rows of `width` values in `values` (0 for rows of no values).
+fn rows_of(values: &[f32], width: usize) -> usize {
+    values.len().checked_div(width).unwrap_or(0)
 }
 
-/// The backward pass: overwrites the output's gradient `grad` with the input's, and returns
-/// the gradients of the bias, `γ` and `β`.
-pub fn backward(x: &[f32], channels: &Channels, grad: &mut [f32]) -> [Vec<f32>; 3] {
+/// `out = x · w` for `x: [rows, input]` and `w: [input, output]`, all row-major, on this
+/// thread.
+fn product(out: &mut [f32], x: &[f32], w: MatRef<'_, f32>) {
+    let (input, output) = (w.nrows(), w.ncols());
+    let rows = rows_of(x, input);
+    matmul(
+        MatMut::from_row_major_slice_mut(out, rows, output),
+        Accum::Replace,
+        MatRef::from_row_major_slice(x, rows, input),
+        w,
+        1.0,
+        Par::Seq,
+    );
+}
+
+/// Adds the bias to every row of `rows`, then normalises, scales, shifts and clips it, in
+/// place.
+#[inline]
+fn normalise(rows: &mut [f32], channels: &Channels) {
+    let Channels { bias, gamma, beta } = *channels;
+    for o in rows.chunks_exact_mut(gamma.len()) {
+        for (o, &b) in o.iter_mut().zip(bias) {
+            *o += b;
+        }
+        let (mean, r) = statistics(o);
+        for ((o, &g), &b) in o.iter_mut().zip(gamma).zip(beta) {
+            *o = ((*o - mean) * r * g + b).max(0.0);
+        }
+    }
+}
+
+/// The forward pass on the rows of `x` (`weight.len() / channels` values each) with the
+/// row-major weight `[input, output]`: the output, and with `keep` the product `x · weight`
+/// (before the bias) that [`backward`] needs (empty otherwise). Each block of
+/// [`ROWS_PER_TASK`] rows is multiplied and normalised while it is in cache.
+pub fn forward(x: &[f32], weight: &[f32], channels: &Channels, keep: bool) -> (Vec<f32>, Vec<f32>) {
+    let c = channels.gamma.len();
+    let input = rows_of(weight, c);
+    let rows = rows_of(x, input);
+    let mut out = vec![0.0f32; rows * c];
+    let mut kept = vec![0.0f32; if keep { rows * c } else { 0 }];
+    if rows * c == 0 {
+        return (out, kept);
+    }
+    let w = MatRef::from_row_major_slice(weight, input, c);
+    let arch = pulp::Arch::new();
+    let block = |out: &mut [f32], x: &[f32], kept: Option<&mut [f32]>| {
+        product(out, x, w);
+        if let Some(kept) = kept {
+            kept.copy_from_slice(out);
+        }
+        arch.dispatch(|| normalise(out, channels));
+    };
+    let (xs, outs) = (x.par_chunks(ROWS_PER_TASK * input), out.par_chunks_mut(ROWS_PER_TASK * c));
+    if keep {
+        outs.zip(kept.par_chunks_mut(ROWS_PER_TASK * c))
+            .zip(xs)
+            .for_each(|((out, kept), x)| block(out, x, Some(kept)));
+    } else {
+        outs.zip(xs).for_each(|(out, x)| block(out, x, None));
+    }
+    (out, kept)
+}
+
+/// The backward pass of one block of rows through the normalisation: overwrites the output's
+/// gradient `grad` with the product's, and returns the block's gradients of the bias, `γ`
+/// and `β`.
+fn normalise_backward(z: &[f32], channels: &Channels, grad: &mut [f32]) -> [Vec<f32>; 3] {
     let Channels { bias, gamma, beta } = *channels;
     let c = gamma.len();
-    if c == 0 {
-        return [Vec::new(), Vec::new(), Vec::new()];
+    let [mut dbias, mut dgamma, mut dbeta] = [0; 3].map(|_| vec![0.0f32; c]);
+    let [mut y, mut xhat, mut ghat] = [0; 3].map(|_| vec![0.0f32; c]);
+    for (g, row) in grad.chunks_exact_mut(c).zip(z.chunks_exact(c)) {
+        for ((y, &v), &b) in y.iter_mut().zip(row).zip(bias) {
+            *y = v + b;
+        }
+        let (mean, r) = statistics(&y);
+        // x̂, the output's gradient where the output is positive (ReLU), and the γ, β
+        // gradients of this row.
+        for (((((((xh, gh), dg), db), &v), &g), &ga), &be) in xhat
+            .iter_mut()
+            .zip(ghat.iter_mut())
+            .zip(dgamma.iter_mut())
+            .zip(dbeta.iter_mut())
+            .zip(&y)
+            .zip(g.iter())
+            .zip(gamma)
+            .zip(beta)
+        {
+            let h = (v - mean) * r;
+            let g = if h * ga + be > 0.0 { g } else { 0.0 };
+            *dg += g * h;
+            *db += g;
+            *xh = h;
+            *gh = g * ga;
+        }
+        let m1 = lane_sum(&ghat, &ghat, |g, _| g) / c as f32;
+        let m2 = lane_sum(&ghat, &xhat, |g, h| g * h) / c as f32;
+        for (((dx, d), &gh), &xh) in g.iter_mut().zip(dbias.iter_mut()).zip(&ghat).zip(&xhat) {
+            *dx = r * (gh - m1 - xh * m2);
+            *d += *dx;
+        }
     }
-    let block = ROWS_PER_TASK * c;
+    [dbias, dgamma, dbeta]
+}
+
+/// The backward pass, from the layer's input `x`, row-major weight and kept product (see
+/// [`forward`]) and the output's gradient `grad` (overwritten with the product's): the
+/// gradients of the input (empty unless `input_gradient`), the weight, the bias, `γ` and
+/// `β`. Each block of [`ROWS_PER_TASK`] rows goes through the normalisation and both matrix
+/// products while it is in cache; the blocks' parameter gradients are added in block order,
+/// so the result does not depend on the thread count.
+pub fn backward(
+    x: &[f32],
+    weight: &[f32],
+    z: &[f32],
+    channels: &Channels,
+    grad: &mut [f32],
+    input_gradient: bool,
+) -> [Vec<f32>; 5] {
+    let c = channels.gamma.len();
+    let input = rows_of(weight, c);
+    let rows = rows_of(z, c);
+    let mut dx = vec![0.0f32; if input_gradient { rows * input } else { 0 }];
+    let mut sums = [input * c, c, c, c].map(|n| vec![0.0f32; n]);
+    if rows * c == 0 {
+        let [dw, db, dg, dbe] = sums;
+        return [dx, dw, db, dg, dbe];
+    }
+    let w = MatRef::from_row_major_slice(weight, input, c);
     let arch = pulp::Arch::new();
-    let partial: Vec<[Vec<f32>; 3]> = grad
-        .par_chunks_mut(block)
-        .zip(x.par_chunks(block))
-        .map(|(grad, x)| {
-            arch.dispatch(|| {
-                let [mut dbias, mut dgamma, mut dbeta] = [0; 3].map(|_| vec![0.0f32; c]);
-                let [mut y, mut xhat, mut ghat] = [0; 3].map(|_| vec![0.0f32; c]);
-                for (g, row) in grad.chunks_exact_mut(c).zip(x.chunks_exact(c)) {
-                    for ((y, &v), &b) in y.iter_mut().zip(row).zip(bias) {
-                        *y = v + b;
-                    }
-                    let (mean, r) = statistics(&y);
-                    // x̂, the output's gradient where the output is positive (ReLU), and the
-                    // γ, β gradients of this row.
-                    for (((((((xh, gh), dg), db), &v), &g), &ga), &be) in xhat
-                        .iter_mut()
-                        .zip(ghat.iter_mut())
-                        .zip(dgamma.iter_mut())
-                        .zip(dbeta.iter_mut())
-                        .zip(&y)
-                        .zip(g.iter())
-                        .zip(gamma)
-                        .zip(beta)
-                    {
-                        let h = (v - mean) * r;
-                        let g = if h * ga + be > 0.0 { g } else { 0.0 };
-                        *dg += g * h;
-                        *db += g;
-                        *xh = h;
-                        *gh = g * ga;
-                    }
-                    let m1 = lane_sum(&ghat, &ghat, |g, _| g) / c as f32;
-                    let m2 = lane_sum(&ghat, &xhat, |g, h| g * h) / c as f32;
-                    for (((dx, d), &gh), &xh) in
-                        g.iter_mut().zip(dbias.iter_mut()).zip(&ghat).zip(&xhat)
-                    {
-                        *dx = r * (gh - m1 - xh * m2);
-                        *d += *dx;
-                    }
-                }
-                [dbias, dgamma, dbeta]
-            })
-        })
-        .collect();
-    let mut sums = [0; 3].map(|_| vec![0.0f32; c]);
+    let block = |grad: &mut [f32], z: &[f32], x: &[f32], dx: Option<&mut [f32]>| {
+        let [db, dg, dbe] = arch.dispatch(|| normalise_backward(z, channels, grad));
+        let r = rows_of(z, c);
+        let dz = MatRef::from_row_major_slice(grad, r, c);
+        if let Some(dx) = dx {
+            matmul(
+                MatMut::from_row_major_slice_mut(dx, r, input),
+                Accum::Replace,
+                dz,
+                w.transpose(),
+                1.0,
+                Par::Seq,
+            );
+        }
+        let mut dw = vec![0.0f32; input * c];
+        matmul(
+            MatMut::from_row_major_slice_mut(&mut dw, input, c),
+            Accum::Replace,
+            MatRef::from_row_major_slice(x, r, input).transpose(),
+            dz,
+            1.0,
+            Par::Seq,
+        );
+        [dw, db, dg, dbe]
+    };
+    let (grads, zs) = (grad.par_chunks_mut(ROWS_PER_TASK * c), z.par_chunks(ROWS_PER_TASK * c));
+    let xs = x.par_chunks(ROWS_PER_TASK * input);
+    let partial: Vec<[Vec<f32>; 4]> = if input_gradient {
+        grads
+            .zip(zs)
+            .zip(xs)
+            .zip(dx.par_chunks_mut(ROWS_PER_TASK * input))
+            .map(|(((g, z), x), dx)| block(g, z, x, Some(dx)))
+            .collect()
+    } else {
+        grads.zip(zs).zip(xs).map(|((g, z), x)| block(g, z, x, None)).collect()
+    };
     for block in &partial {
         for (sum, part) in sums.iter_mut().zip(block) {
             sum.iter_mut().zip(part).for_each(|(a, b)| *a += b);
         }
     }
-    sums
+    let [dw, db, dg, dbe] = sums;
+    [dx, dw, db, dg, dbe]
 }
 
 #[cfg(test)]

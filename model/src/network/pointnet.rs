@@ -15,6 +15,7 @@ use burn::prelude::*;
 use burn::tensor::TensorData;
 
 use crate::network::norm::linear_norm_relu;
+use crate::network::pool::max_pool;
 use crate::network::sampling::{ball_query, farthest_point_sampling, three_nn, SamplingError};
 
 /// A `Linear` layer that feeds a ReLU, initialised after He et al. (variance `2 / fan_in`)
@@ -28,21 +29,20 @@ pub fn relu_layer(input: usize, output: usize) -> LinearConfig {
     })
 }
 
-/// `layer` applied to the last dimension of `x`. In training (the layer's weights track
-/// gradients) it is one matrix product on the flattened rows (`[rows, input] x [input,
-/// output]`): burn's `Linear` on a rank-3 or rank-4 tensor runs one small product per
-/// leading index (a thousand `[128, C]` products for a pair tensor, and as many again in the
-/// backward pass, each followed by a reduction of the weight gradient), where one product
-/// does the same arithmetic in less time (stage 1 steps 1.2x faster). Inference keeps
-/// burn's per-index products: the flattened product can round the last bit of an output
-/// differently (the blocking of the matrix product depends on the row count), and the
-/// committed boards were computed with the per-index ones.
+/// `layer` applied to the last dimension of `x`, as one matrix product on the flattened rows
+/// (`[rows, input] x [input, output]`): burn's `Linear` on a rank-3 or rank-4 tensor runs one
+/// small product per leading index (a thousand `[128, C]` products for a pair tensor, and as
+/// many again in the backward pass, each followed by a reduction of the weight gradient),
+/// where one product does the same arithmetic in less time (stage 1 steps 1.2x faster,
+/// the single pass about as much). The two can round the last bit of an output differently
+/// (the blocking of the product depends on the row count); the committed boards are computed
+/// with this one.
 ///
 /// # Shapes
 /// `[..., input]` -> `[..., output]`
 pub fn linear<const D: usize>(layer: &Linear, x: Tensor<D>) -> Tensor<D> {
     let mut dims = x.dims();
-    if D <= 2 || !layer.weight.val().is_require_grad() {
+    if D <= 2 {
         return layer.forward(x);
     }
     let rows: usize = dims[..D - 1].iter().product();
@@ -251,7 +251,7 @@ impl SetAbstraction {
                             }
                             None => relative,
                         };
-                    scale.mlp.forward(input).max_dim(2).squeeze_dim::<3>(2) // [batch, centres, out]
+                    max_pool(scale.mlp.forward(input)).squeeze_dim::<3>(2) // [batch, centres, out]
                 })
                 .collect();
         Ok((new_xyz, Tensor::cat(pooled, 2)))
@@ -273,7 +273,7 @@ impl GlobalAbstraction {
     /// # Shapes
     /// `xyz: [batch, points, 3]`, `features: [batch, points, channels]` -> `[batch, 1, out]`
     pub fn forward(&self, xyz: Tensor<3>, features: Tensor<3>) -> Tensor<3> {
-        self.mlp.forward(Tensor::cat(vec![xyz, features], 2)).max_dim(1) // [batch, 1, out]
+        max_pool(self.mlp.forward(Tensor::cat(vec![xyz, features], 2))) // [batch, 1, out]
     }
 }
 

@@ -13,7 +13,7 @@ fn tensor(values: Vec<f32>, shape: [usize; 3], device: &Device) -> Tensor<3> {
 
 #[test]
 fn linear_on_flattened_rows_is_burns_linear_with_the_same_gradients() {
-    // In training the rows are flattened into one product: the same dot products, and
+    // The rows are flattened into one product: the same dot products, and
     // the same weight gradients up to the order of the sums.
     let device = Device::flex().autodiff();
     let layer = rng::seeded(&device, 1, || rng::materialised(relu_layer(32, 48).init(&device)));

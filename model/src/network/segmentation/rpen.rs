@@ -10,6 +10,7 @@ use burn::tensor::activation;
 
 use crate::network::config::NetworkConfig;
 use crate::network::pointnet::{Head, SharedMlp};
+use crate::network::pool::max_pool;
 
 /// What the RPEN outputs for `steps` steps.
 #[derive(Debug, Clone)]
@@ -60,12 +61,12 @@ impl RpenModule {
         for _ in 0..steps {
             let e = memory.clone().reshape([batch, 1, s, 1]).expand([batch, s, s, 1]);
             let input = Tensor::cat(vec![support.clone().unsqueeze_dim::<4>(3), e], 3);
-            let rows = self.pair.forward(input).max_dim(2).squeeze_dim::<3>(2); // [batch, s, h]
+            let rows = max_pool(self.pair.forward(input)).squeeze_dim::<3>(2); // [batch, s, h]
             let global =
-                self.global.forward(Tensor::cat(vec![p.clone(), rows.clone()], 2)).max_dim(1); // [batch, 1, g]
+                max_pool(self.global.forward(Tensor::cat(vec![p.clone(), rows.clone()], 2))); // [batch, 1, g]
             let g = global.dims()[2];
             let z = self.state.forward(Tensor::cat(vec![rows, global.expand([batch, s, g])], 2)); // [batch, s, z]
-            continuation.push(self.continuation.forward(z.clone().max_dim(1)).reshape([batch, 1]));
+            continuation.push(self.continuation.forward(max_pool(z.clone())).reshape([batch, 1]));
             let weights = activation::softmax(self.weight.forward(z).reshape([batch, 1, s]), 2);
             let y = weights.matmul(support.clone()).reshape([batch, s]); // [batch, s]
             memory = (memory.clone().neg() + 1.0) * y.clone() + memory;

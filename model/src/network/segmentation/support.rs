@@ -7,6 +7,7 @@ use burn::prelude::*;
 
 use crate::network::config::NetworkConfig;
 use crate::network::pointnet::{Head, SharedMlp};
+use crate::network::pool::max_pool;
 use crate::network::segmentation::hypotheses::Hypotheses;
 
 /// The support network.
@@ -40,7 +41,7 @@ impl SupportModule {
         let difference = moved - points.clone() - flow.unsqueeze_dim::<4>(1);
         let relative = points - p.unsqueeze_dim::<4>(2); // [batch, s, s, 3]
         let local = self.local.forward(Tensor::cat(vec![difference, relative], 3)); // [batch, s, s, l]
-        let global = self.global.forward(local.clone().max_dim(2)); // [batch, s, 1, g]
+        let global = self.global.forward(max_pool(local.clone())); // [batch, s, 1, g]
         let g = global.dims()[3];
         let joined = Tensor::cat(vec![local, global.expand([batch, s, s, g])], 3);
         self.head.forward(joined).reshape([batch, s, s])
