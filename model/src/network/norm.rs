@@ -175,22 +175,21 @@ impl<C: CheckpointStrategy> NormReluBackend for Autodiff<Flex, C> {
         let guards = [input.node(), weight.node(), bias.node(), gamma.node(), beta.node()];
         let [input, weight, bias, gamma, beta] =
             [input, weight, bias, gamma, beta].map(|t| t.into_primitive());
-        let rows = input.layout().shape()[0];
-        let output = |x: &F32Rows, w: &F32Rows, channels: &Channels, keep| {
-            let (out, product) = forward(x.values(), w.values(), channels, keep);
-            let c = channels.gamma.len();
-            let tensor = |values| FlexTensor::from_data(TensorData::new(values, [rows, c]));
-            (tensor(out), tensor(product))
-        };
-        let rows_of = |t: &FlexTensor| F32Rows::new(t.clone());
-        let [x, w, b, g, be] = [&input, &weight, &bias, &gamma, &beta].map(rows_of);
-        let channels = Channels { bias: b.values(), gamma: g.values(), beta: be.values() };
         match LinearNormRelu.prepare::<C>(guards).compute_bound().stateful() {
             OpsKind::Tracked(prep) => {
-                let (out, product) = output(&x, &w, &channels, true);
-                prep.finish([input, weight, product, bias, gamma, beta], out)
+                let rows = input.layout().shape()[0];
+                let [x, w, b, g, be] = [input, weight, bias, gamma, beta].map(F32Rows::new);
+                let channels = Channels { bias: b.values(), gamma: g.values(), beta: be.values() };
+                let (out, product) = forward(x.values(), w.values(), &channels, true);
+                let c = channels.gamma.len();
+                let tensor = |values| FlexTensor::from_data(TensorData::new(values, [rows, c]));
+                // The contiguous tensors, so that the backward pass does not copy them again.
+                let state = [x.tensor, w.tensor, tensor(product), b.tensor, g.tensor, be.tensor];
+                prep.finish(state, tensor(out))
             }
-            OpsKind::UnTracked(prep) => prep.finish(output(&x, &w, &channels, false).0),
+            OpsKind::UnTracked(prep) => {
+                prep.finish(Flex::linear_norm_relu(input, weight, bias, gamma, beta))
+            }
         }
     }
 }

@@ -85,6 +85,21 @@ fn inference_takes_the_fused_operation_and_agrees_with_burns() {
 }
 
 #[test]
+fn untracked_autodiff_tensors_take_the_fused_operation_without_a_product() {
+    // No tensor tracks gradients: the operation runs without keeping the product.
+    let device = Device::flex().autodiff();
+    let x = rng::random(&device, 8, [2, 35, 10], Distribution::Normal(0.0, 1.0));
+    let (linear, norm) = layer(&device);
+    let (linear, norm) = (linear.no_grad(), norm.no_grad());
+    assert!(is_fused(&linear, &norm, &x));
+    let a = values(linear_norm_relu(&linear, &norm, x.clone()));
+    let b = values(reference(&linear, &norm, x));
+    let scale = b.iter().fold(1.0f32, |m, v| m.max(v.abs()));
+    let worst = a.iter().zip(&b).map(|(a, b)| (a - b).abs()).fold(0.0, f32::max);
+    assert!(worst <= 2e-5 * scale, "differs by {worst} (scale {scale})");
+}
+
+#[test]
 fn epsilon_is_layer_norms_default() {
     assert_eq!(LayerNormConfig::new(4).epsilon as f32, EPSILON);
 }
