@@ -15,7 +15,9 @@ use model::io::commands::{
 use model::train::average::average_weights;
 use model::train::checkpoint::{load_weights, save_weights, CheckpointDir};
 use model::train::config::TrainConfig;
-use model::train::validation::{score, validation_pairs};
+use model::train::validation::{
+    compare, score_pairs, validation_pairs, PairScores, Scores, VALIDATION_SEED,
+};
 use model::train::{Budget, RunPaths, Trainer};
 use pairs::{PairInput, Prediction};
 
@@ -68,6 +70,18 @@ enum Command {
         /// Weights file (burn record, e.g. checkpoints/cpu/best.bpk).
         #[arg(long)]
         weights: PathBuf,
+        /// Validation pairs to score [default: the config's `validation_pairs`]; a larger
+        /// set holds every pair of a smaller one.
+        #[arg(long)]
+        pairs: Option<u32>,
+        /// A second weights file of the same network (the shipped weights, say): score it on
+        /// the same pairs and print each score's difference (`--weights` minus this one)
+        /// with a 95% paired-bootstrap interval over the pairs.
+        #[arg(long)]
+        against: Option<PathBuf>,
+        /// Bootstrap resamples for `--against`.
+        #[arg(long, default_value_t = 2000)]
+        resamples: usize,
     },
     /// Average several weights files of one network parameter by parameter (a "model soup":
     /// checkpoints fine-tuned from the same weights), into a new weights file.
@@ -258,25 +272,69 @@ fn main() -> Result<()> {
                 );
             }
         }
-        Command::Validate { config, weights } => {
+        Command::Validate { config, weights, pairs, against, resamples } => {
             let config = TrainConfig::load(&config)?;
-            let net = load_weights(&config.network, &weights, &Device::flex())
-                .with_context(|| format!("loading weights {}", weights.display()))?;
-            let pairs = validation_pairs(
-                config.points,
-                config.validation_pairs,
-                config.scanned_per_pair > 0,
-            )
-            .context("generating the validation pairs")?;
-            let s = score(&net, &pairs)?;
-            println!(
-                "{} validation pairs: EPE {:.4}, RI {:.4}, IoU {:.4}, support IoU on the true flow {:.4}",
-                pairs.len(),
-                s.epe,
-                s.rand_index,
-                s.iou,
-                s.support_iou
-            );
+            let count = pairs.unwrap_or(config.validation_pairs);
+            if count == 0 {
+                anyhow::bail!("--pairs must be at least 1");
+            }
+            let load = |path: &PathBuf| {
+                load_weights(&config.network, path, &Device::flex())
+                    .with_context(|| format!("loading weights {}", path.display()))
+            };
+            let net = load(&weights)?;
+            let other = against.as_ref().map(load).transpose()?;
+            let pairs = validation_pairs(config.points, count, config.scanned_per_pair > 0)
+                .context("generating the validation pairs")?;
+            let bar = ProgressBar::new(pairs.len() as u64 * (1 + u64::from(other.is_some())))
+                .with_style(
+                    ProgressStyle::with_template("{elapsed_precise} [{bar:30}] {pos}/{len} pairs")
+                        .expect("a valid template")
+                        .progress_chars("=> "),
+                );
+            let scored = |net| -> Result<Vec<PairScores>> {
+                let mut all = Vec::with_capacity(pairs.len());
+                for chunk in pairs.chunks(8) {
+                    all.extend(score_pairs(net, chunk)?);
+                    bar.inc(chunk.len() as u64);
+                }
+                Ok(all)
+            };
+            let a = scored(&net).with_context(|| format!("scoring {}", weights.display()))?;
+            let b = match (&other, &against) {
+                (Some(net), Some(path)) => {
+                    Some(scored(net).with_context(|| format!("scoring {}", path.display()))?)
+                }
+                _ => None,
+            };
+            bar.finish_and_clear();
+            let line = |name: &std::path::Path, s: Scores| {
+                println!(
+                    "{}: {} validation pairs: EPE {:.4}, RI {:.4}, IoU {:.4}, support IoU on the true flow {:.4}",
+                    name.display(),
+                    pairs.len(),
+                    s.epe,
+                    s.rand_index,
+                    s.iou,
+                    s.support_iou
+                )
+            };
+            line(&weights, Scores::of(&a));
+            if let (Some(b), Some(path)) = (b, &against) {
+                line(path, Scores::of(&b));
+                let c = compare(&a, &b, resamples, VALIDATION_SEED).context("comparing")?;
+                println!(
+                    "difference (first minus second), 95% paired-bootstrap interval over {resamples} resamples:"
+                );
+                for (name, d) in [
+                    ("EPE", c.epe),
+                    ("RI", c.rand_index),
+                    ("IoU", c.iou),
+                    ("support IoU", c.support_iou),
+                ] {
+                    println!("  {name:<12} {:+.4}  [{:+.4}, {:+.4}]", d.value, d.low, d.high);
+                }
+            }
         }
         Command::Average { config, weights, out } => {
             let config = TrainConfig::load(&config)?;

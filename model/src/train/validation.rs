@@ -93,35 +93,200 @@ pub enum ScoreError {
     },
 }
 
+/// One pair's scores, the terms that [`Scores`] averages.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PairScores {
+    /// End-point error of the flow.
+    pub epe: f64,
+    /// Rand index of P's segmentation.
+    pub rand_index: f64,
+    /// Sum of the matched IoU over the pair's ground-truth parts.
+    pub iou_sum: f64,
+    /// The pair's ground-truth parts.
+    pub parts: usize,
+    /// Support IoU on the true flow ([`support_iou`]).
+    pub support_iou: f64,
+}
+
+impl Scores {
+    /// The mean scores of a set of pairs: EPE, Rand index and support IoU averaged over
+    /// pairs, the IoU over every ground-truth part of every pair.
+    pub fn of(pairs: &[PairScores]) -> Self {
+        Self::of_indices(pairs, 0..pairs.len())
+    }
+
+    /// [`Scores::of`] the pairs at `indices` (repeats count once each time).
+    fn of_indices(pairs: &[PairScores], indices: impl Iterator<Item = usize>) -> Self {
+        let (mut n, mut parts) = (0usize, 0usize);
+        let (mut epe, mut ri, mut iou, mut support) = (0.0, 0.0, 0.0, 0.0);
+        for p in indices.map(|i| &pairs[i]) {
+            n += 1;
+            parts += p.parts;
+            epe += p.epe;
+            ri += p.rand_index;
+            iou += p.iou_sum;
+            support += p.support_iou;
+        }
+        let n = n.max(1) as f64;
+        Self {
+            epe: epe / n,
+            rand_index: ri / n,
+            iou: iou / parts.max(1) as f64,
+            support_iou: support / n,
+        }
+    }
+}
+
 /// Scores the network's single-pass predictions on `pairs`.
 pub fn score(net: &PartInductionNet, pairs: &[Pair]) -> Result<Scores, ScoreError> {
-    let (mut epe_sum, mut ri_sum, mut iou_sum, mut parts) = (0.0, 0.0, 0.0, 0usize);
-    let mut support_sum = 0.0;
-    for pair in pairs {
-        let id = || pair.id().to_string();
-        let prediction = net
-            .predict(pair.input())
-            .map_err(|source| ScoreError::Predict { pair: id(), source })?;
-        let truth = pair.truth();
-        let metric = |source| ScoreError::Metric { pair: id(), source };
-        let flow = prediction.flow.as_deref().unwrap_or_default();
-        epe_sum += epe(flow, &truth.flow).map_err(metric)?;
-        ri_sum += rand_index(&prediction.segments_p, &truth.part_p).map_err(metric)?;
-        let matching = matched_iou(&prediction.segments_p, &truth.part_p).map_err(metric)?;
-        iou_sum += matching.iou.iter().sum::<f64>();
-        parts += matching.iou.len();
-        let (subset, probs) = net
-            .supports(pair.input(), &truth.flow)
-            .map_err(|source| ScoreError::Predict { pair: id(), source })?;
-        let parts_s: Vec<PartId> = subset.iter().map(|&i| truth.part_p[i]).collect();
-        support_sum += support_iou(&probs, &parts_s);
+    Ok(Scores::of(&score_pairs(net, pairs)?))
+}
+
+/// Scores the network's single-pass predictions on every pair of `pairs`, in order.
+pub fn score_pairs(net: &PartInductionNet, pairs: &[Pair]) -> Result<Vec<PairScores>, ScoreError> {
+    pairs
+        .iter()
+        .map(|pair| {
+            let id = || pair.id().to_string();
+            let prediction = net
+                .predict(pair.input())
+                .map_err(|source| ScoreError::Predict { pair: id(), source })?;
+            let truth = pair.truth();
+            let metric = |source| ScoreError::Metric { pair: id(), source };
+            let flow = prediction.flow.as_deref().unwrap_or_default();
+            let matching = matched_iou(&prediction.segments_p, &truth.part_p).map_err(metric)?;
+            let (subset, probs) = net
+                .supports(pair.input(), &truth.flow)
+                .map_err(|source| ScoreError::Predict { pair: id(), source })?;
+            let parts_s: Vec<PartId> = subset.iter().map(|&i| truth.part_p[i]).collect();
+            Ok(PairScores {
+                epe: epe(flow, &truth.flow).map_err(metric)?,
+                rand_index: rand_index(&prediction.segments_p, &truth.part_p).map_err(metric)?,
+                iou_sum: matching.iou.iter().sum::<f64>(),
+                parts: matching.iou.len(),
+                support_iou: support_iou(&probs, &parts_s),
+            })
+        })
+        .collect()
+}
+
+/// A difference of one score between two networks on the same pairs, with a 95% interval.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Difference {
+    /// The first network's score minus the second's, on the whole set.
+    pub value: f64,
+    /// The 2.5th percentile of the difference over the bootstrap resamples.
+    pub low: f64,
+    /// The 97.5th percentile.
+    pub high: f64,
+}
+
+impl Difference {
+    /// Whether the interval lies wholly above zero.
+    pub fn above_zero(&self) -> bool {
+        self.low > 0.0
     }
-    let n = pairs.len().max(1) as f64;
-    Ok(Scores {
-        epe: epe_sum / n,
-        rand_index: ri_sum / n,
-        iou: iou_sum / parts.max(1) as f64,
-        support_iou: support_sum / n,
+
+    /// Whether the interval lies wholly below zero.
+    pub fn below_zero(&self) -> bool {
+        self.high < 0.0
+    }
+}
+
+/// Differences of every score between two networks, `a` minus `b`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Comparison {
+    /// EPE difference (negative: `a` has the better flow).
+    pub epe: Difference,
+    /// Rand index difference.
+    pub rand_index: Difference,
+    /// IoU difference.
+    pub iou: Difference,
+    /// Support IoU difference.
+    pub support_iou: Difference,
+}
+
+/// Why two sets of scores cannot be compared.
+#[derive(Debug, thiserror::Error)]
+pub enum CompareError {
+    /// The two sets score different numbers of pairs.
+    #[error("the first network was scored on {a} pairs and the second on {b}")]
+    Lengths {
+        /// Pairs of the first.
+        a: usize,
+        /// Pairs of the second.
+        b: usize,
+    },
+    /// Nothing to compare.
+    #[error("no pairs to compare")]
+    Empty,
+    /// Pair `index` has different parts in the two sets: they are not the same pairs.
+    #[error("pair {index} has {a} parts in the first set and {b} in the second")]
+    Parts {
+        /// The pair's position.
+        index: usize,
+        /// Its parts in the first set.
+        a: usize,
+        /// Its parts in the second.
+        b: usize,
+    },
+}
+
+/// Compares two networks scored on the same pairs (`a[i]` and `b[i]` are one pair) by the
+/// paired bootstrap: `resamples` times, draw as many pairs as there are with replacement
+/// (the same draw for both networks), and take the difference of the mean scores; the
+/// interval is the 2.5th to 97.5th percentile of those differences. The draws come from
+/// `seed` alone.
+pub fn compare(
+    a: &[PairScores],
+    b: &[PairScores],
+    resamples: usize,
+    seed: u64,
+) -> Result<Comparison, CompareError> {
+    use rand::{Rng, SeedableRng};
+    if a.len() != b.len() {
+        return Err(CompareError::Lengths { a: a.len(), b: b.len() });
+    }
+    if a.is_empty() {
+        return Err(CompareError::Empty);
+    }
+    if let Some(index) = (0..a.len()).find(|&i| a[i].parts != b[i].parts) {
+        return Err(CompareError::Parts { index, a: a[index].parts, b: b[index].parts });
+    }
+    let diff = |x: Scores, y: Scores| {
+        [x.epe - y.epe, x.rand_index - y.rand_index, x.iou - y.iou, x.support_iou - y.support_iou]
+    };
+    let whole = diff(Scores::of(a), Scores::of(b));
+    let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(seed);
+    let mut draws: [Vec<f64>; 4] = Default::default();
+    let mut sample = vec![0usize; a.len()];
+    for _ in 0..resamples {
+        sample.iter_mut().for_each(|s| *s = rng.random_range(0..a.len()));
+        let d = diff(
+            Scores::of_indices(a, sample.iter().copied()),
+            Scores::of_indices(b, sample.iter().copied()),
+        );
+        for (draw, v) in draws.iter_mut().zip(d) {
+            draw.push(v);
+        }
+    }
+    let mut interval = |k: usize| {
+        let mut d = std::mem::take(&mut draws[k]);
+        d.sort_by(f64::total_cmp);
+        let at = |q: f64| {
+            if d.is_empty() {
+                whole[k]
+            } else {
+                d[((q * (d.len() - 1) as f64).round() as usize).min(d.len() - 1)]
+            }
+        };
+        Difference { value: whole[k], low: at(0.025), high: at(0.975) }
+    };
+    Ok(Comparison {
+        epe: interval(0),
+        rand_index: interval(1),
+        iou: interval(2),
+        support_iou: interval(3),
     })
 }
 
@@ -151,7 +316,58 @@ pub fn support_iou(probs: &[f32], parts: &[PartId]) -> f64 {
 
 #[cfg(test)]
 mod tests {
-    use super::support_iou;
+    use super::{compare, support_iou, CompareError, PairScores, Scores};
+
+    fn pair(epe: f64, iou_sum: f64, parts: usize) -> PairScores {
+        PairScores { epe, rand_index: 0.5, iou_sum, parts, support_iou: 0.25 }
+    }
+
+    #[test]
+    fn scores_average_over_pairs_and_the_iou_over_parts() {
+        let s = Scores::of(&[pair(0.1, 1.5, 2), pair(0.3, 0.2, 1)]);
+        assert!((s.epe - 0.2).abs() < 1e-12);
+        assert!((s.iou - 1.7 / 3.0).abs() < 1e-12);
+        assert!((s.rand_index - 0.5).abs() < 1e-12);
+        assert!((s.support_iou - 0.25).abs() < 1e-12);
+    }
+
+    #[test]
+    fn a_uniform_gain_has_a_point_interval_and_a_mixed_one_straddles_zero() {
+        let b: Vec<_> = (0..50).map(|i| pair(0.05 + 0.001 * i as f64, 0.4, 1)).collect();
+        // Every pair 0.1 better in IoU and 0.01 better in EPE: every resample says so.
+        let a: Vec<_> = b.iter().map(|p| pair(p.epe - 0.01, p.iou_sum + 0.1, 1)).collect();
+        let c = compare(&a, &b, 500, 1).unwrap();
+        for (d, want) in [(c.iou, 0.1), (c.epe, -0.01)] {
+            assert!((d.value - want).abs() < 1e-9, "{d:?}");
+            assert!((d.low - want).abs() < 1e-9 && (d.high - want).abs() < 1e-9, "{d:?}");
+        }
+        assert!(c.iou.above_zero() && c.epe.below_zero());
+        assert_eq!(c.rand_index.value, 0.0);
+        assert!(!c.rand_index.above_zero() && !c.rand_index.below_zero());
+        // Half the pairs 0.2 better, half 0.2 worse: no difference on the whole set, and
+        // resamples on both sides of it.
+        let mixed: Vec<_> = b
+            .iter()
+            .enumerate()
+            .map(|(i, p)| pair(p.epe, p.iou_sum + if i % 2 == 0 { 0.2 } else { -0.2 }, 1))
+            .collect();
+        let c = compare(&mixed, &b, 500, 1).unwrap();
+        assert!(c.iou.value.abs() < 1e-9);
+        assert!(c.iou.low < -0.01 && c.iou.high > 0.01, "{:?}", c.iou);
+        // The draws come from the seed alone.
+        assert_eq!(c, compare(&mixed, &b, 500, 1).unwrap());
+    }
+
+    #[test]
+    fn comparing_different_pairs_is_an_error() {
+        let a = [pair(0.1, 1.0, 2)];
+        assert!(matches!(compare(&a, &[], 10, 0), Err(CompareError::Lengths { a: 1, b: 0 })));
+        assert!(matches!(compare(&[], &[], 10, 0), Err(CompareError::Empty)));
+        assert!(matches!(
+            compare(&a, &[pair(0.1, 1.0, 3)], 10, 0),
+            Err(CompareError::Parts { index: 0, a: 2, b: 3 })
+        ));
+    }
 
     #[test]
     fn support_iou_on_hand_computed_cases() {
