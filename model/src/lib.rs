@@ -15,6 +15,8 @@
 //! - [`inference`] (4.4): the iterative procedure, the rotation search over 48 initial
 //!   orientations, hard labels by graph cut ([`inference::labels`]), and
 //!   [`inference::method`], the network as the evaluator's method and segmenter.
+//! - [`diagnose`]: where the network loses accuracy, by oracle substitution stage by
+//!   stage (`model diagnose`).
 //! - [`io`]: a user's PLY and OBJ files, the animated glTF, and what `model infer` and
 //!   `model animate` do ([`io::commands`]).
 //!
@@ -25,7 +27,7 @@
 //!
 //! let device = Device::flex();
 //! let xyz = rng::random(&device, 7, [1, 64, 3], burn::tensor::Distribution::Default);
-//! let sa = SetAbstractionConfig::single(16, 0.4, 8, vec![32, 32]).init(0, &device);
+//! let sa = SetAbstractionConfig::single(16, 0.4, 8, vec![32, 32]).init(0, false, &device);
 //! let (centres, features) = sa.forward(xyz.clone(), None).expect("64 points");
 //! assert_eq!(features.dims(), [1, 16, 32]);
 //! let fp = FeaturePropagation::new(32, &[16], &device);
@@ -33,6 +35,7 @@
 //! ```
 #![deny(missing_docs)]
 
+pub mod diagnose;
 pub mod inference;
 pub mod io;
 pub mod network;

@@ -7,6 +7,7 @@ use anyhow::{Context, Result};
 use burn::prelude::*;
 use clap::{Parser, Subcommand, ValueEnum};
 use indicatif::{ProgressBar, ProgressStyle};
+use model::diagnose::{diagnose, DiagnoseParams};
 use model::inference::InferenceParams;
 use model::io::animation::{write_animation, AnimationParams};
 use model::io::commands::{
@@ -29,6 +30,7 @@ use pairs::{PairInput, Prediction};
         model train --config model/configs/cpu.toml      # train (or resume) the CPU config\n  \
         model train --config tiny --max-steps 20         # a built-in config by name\n  \
         model validate --config cpu --weights model/weights/cpu/model.bpk\n  \
+        model diagnose --config cpu --weights model/weights/cpu/model.bpk --pairs 240\n  \
         model infer P.ply Q.obj --out out/               # parts, motions, coloured PLYs\n  \
         model animate --pair sf2f:sf2f-00000-1 --out anim.glb"
 )]
@@ -79,9 +81,38 @@ enum Command {
         /// with a 95% paired-bootstrap interval over the pairs.
         #[arg(long)]
         against: Option<PathBuf>,
+        /// Config of the `--against` weights, where it differs from `--config` in a switch
+        /// that keeps the parameter shapes (an ablation's), e.g. `hypothesis_projection`;
+        /// the validation pairs are still `--config`'s [default: --config].
+        #[arg(long, requires = "against")]
+        against_config: Option<String>,
         /// Bootstrap resamples for `--against`.
         #[arg(long, default_value_t = 2000)]
         resamples: usize,
+    },
+    /// Decompose the network's error by oracle substitution, without training: the flow
+    /// module against the matching alone and the true flow at subset sizes; on the true
+    /// flow, the support module against a residual threshold rule (on the network's
+    /// hypotheses, a rigid and a similarity fit per true part) and the true same-part
+    /// matrix, each through the RPEN; the subset ceiling; the pairs' motion scales.
+    /// Prints the table and writes it as CSV.
+    Diagnose {
+        /// Config file, or a built-in name; its network sizes must match the weights.
+        #[arg(long)]
+        config: String,
+        /// Weights file (burn record).
+        #[arg(long)]
+        weights: PathBuf,
+        /// A dataset folder (datasets/<name>) to diagnose instead of the validation pairs.
+        #[arg(long)]
+        dataset: Option<PathBuf>,
+        /// Pairs to diagnose: the first N validation pairs, or of the dataset [default: the
+        /// config's `validation_pairs`; every pair of a dataset].
+        #[arg(long)]
+        pairs: Option<u32>,
+        /// Where to write the table as CSV (replaced whole).
+        #[arg(long, default_value = "diagnose.csv")]
+        out: PathBuf,
     },
     /// Average several weights files of one network parameter by parameter (a "model soup":
     /// checkpoints fine-tuned from the same weights), into a new weights file.
@@ -272,18 +303,23 @@ fn main() -> Result<()> {
                 );
             }
         }
-        Command::Validate { config, weights, pairs, against, resamples } => {
+        Command::Validate { config, weights, pairs, against, against_config, resamples } => {
             let config = TrainConfig::load(&config)?;
+            let other_config = match &against_config {
+                Some(name) => TrainConfig::load(name)?,
+                None => config.clone(),
+            };
             let count = pairs.unwrap_or(config.validation_pairs);
             if count == 0 {
                 anyhow::bail!("--pairs must be at least 1");
             }
-            let load = |path: &PathBuf| {
-                load_weights(&config.network, path, &Device::flex())
+            let load = |network, path: &PathBuf| {
+                load_weights(network, path, &Device::flex())
                     .with_context(|| format!("loading weights {}", path.display()))
             };
-            let net = load(&weights)?;
-            let other = against.as_ref().map(load).transpose()?;
+            let net = load(&config.network, &weights)?;
+            let other =
+                against.as_ref().map(|path| load(&other_config.network, path)).transpose()?;
             let pairs = validation_pairs(config.points, count, config.scanned_per_pair > 0)
                 .context("generating the validation pairs")?;
             let bar = ProgressBar::new(pairs.len() as u64 * (1 + u64::from(other.is_some())))
@@ -336,6 +372,52 @@ fn main() -> Result<()> {
                 }
             }
         }
+        Command::Diagnose { config, weights, dataset, pairs, out } => {
+            let config = TrainConfig::load(&config)?;
+            let net = load_weights(&config.network, &weights, &Device::flex())
+                .with_context(|| format!("loading weights {}", weights.display()))?;
+            let pairs = match &dataset {
+                None => {
+                    let count = pairs.unwrap_or(config.validation_pairs);
+                    validation_pairs(config.points, count, config.scanned_per_pair > 0)
+                        .context("generating the validation pairs")?
+                }
+                Some(dir) => read_dataset(dir, pairs)?,
+            };
+            let bar = ProgressBar::new(pairs.len() as u64).with_style(
+                ProgressStyle::with_template("{elapsed_precise} [{bar:30}] {pos}/{len} pairs")
+                    .expect("a valid template")
+                    .progress_chars("=> "),
+            );
+            let diagnosis = diagnose(&net, &pairs, &DiagnoseParams::default(), |done| {
+                bar.set_position(done as u64)
+            })
+            .context("diagnosing")?;
+            bar.finish_and_clear();
+            println!("{} pairs, weights {}", diagnosis.pairs, weights.display());
+            println!("{:<72} {:>11} {:>7} {:>7}", "row", "support IoU", "IoU", "EPE");
+            let cell = |v: Option<f64>| v.map_or("-".to_string(), |v| format!("{v:.4}"));
+            for r in &diagnosis.rows {
+                println!(
+                    "{:<72} {:>11} {:>7} {:>7}",
+                    r.name,
+                    cell(r.support_iou),
+                    cell(r.iou),
+                    cell(r.epe)
+                );
+            }
+            let s = diagnosis.scale;
+            println!(
+                "per-pair motion scale |s - 1|: median {:.4}, 90th percentile {:.4}, max {:.4}",
+                s.median, s.p90, s.max
+            );
+            let csv = diagnosis.to_csv();
+            pairs::atomic::replace_file(&out, |file| {
+                std::io::Write::write_all(file, csv.as_bytes()).map_err(pairs::atomic::at(&out))
+            })
+            .with_context(|| format!("writing {}", out.display()))?;
+            println!("wrote {}", out.display());
+        }
         Command::Average { config, weights, out } => {
             let config = TrainConfig::load(&config)?;
             let net = average_weights(&config.network, &weights, &Device::flex())
@@ -373,4 +455,21 @@ fn main() -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// The first `limit` pairs of a dataset folder (every pair without a limit).
+fn read_dataset(dir: &std::path::Path, limit: Option<u32>) -> Result<Vec<pairs::Pair>> {
+    let dataset = pairs::dataset::Dataset::open(dir)
+        .with_context(|| format!("opening the dataset {}", dir.display()))?;
+    let mut out = Vec::new();
+    for pair in dataset.pairs().with_context(|| format!("reading {}", dir.display()))? {
+        if limit.is_some_and(|n| out.len() >= n as usize) {
+            break;
+        }
+        out.push(pair.with_context(|| format!("reading a pair of {}", dir.display()))?);
+    }
+    if out.is_empty() {
+        anyhow::bail!("the dataset {} holds no pairs", dir.display());
+    }
+    Ok(out)
 }

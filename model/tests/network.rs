@@ -308,7 +308,34 @@ fn a_run_with_init_weights_starts_from_them() {
         pairs.clone(),
     )
     .expect("a trainer");
-    assert_ne!(parameter_values(&seeded.network().valid()), expected, "another seed");
+    let fresh = parameter_values(&seeded.network().valid());
+    assert_ne!(fresh, expected, "another seed");
+    // Only the correspondence and flow modules from the file: those tensors come first in
+    // module order, and the rest are the seeded network's.
+    use model::train::config::NetModule;
+    let flow_only = TrainConfig {
+        init_modules: vec![NetModule::Correspondence, NetModule::Flow],
+        ..config.clone()
+    };
+    let mixed = Trainer::on_pairs(
+        flow_only,
+        paths(&dir.path().join("mixed")),
+        Device::flex().autodiff(),
+        pairs.clone(),
+    )
+    .expect("a trainer");
+    let mixed = parameter_values(&mixed.network().valid());
+    let split = mixed.iter().zip(&expected).position(|(a, b)| a != b).expect("some seeded");
+    let device = Device::flex();
+    let flow_tensors =
+        parameter_count(&model::network::correspondence::CorrespondenceModule::new(
+            &tiny().network,
+            &device,
+        )) + parameter_count(&model::network::flow::FlowModule::new(&tiny().network, &device));
+    assert_eq!(split, flow_tensors, "the correspondence and flow modules come from the file");
+    assert_eq!(mixed[split..], fresh[split..], "the segmentation module is the seeded one");
+    let orphan = TrainConfig { init_weights: None, ..flow_only_config(&config) };
+    assert!(orphan.validate().is_err(), "init_modules without init_weights");
     let missing = TrainConfig { init_weights: Some(dir.path().join("none.bpk")), ..tiny() };
     let err =
         Trainer::on_pairs(missing, paths(&dir.path().join("m")), Device::flex().autodiff(), pairs)
@@ -316,10 +343,15 @@ fn a_run_with_init_weights_starts_from_them() {
     assert!(err.to_string().contains("none.bpk"), "{err}");
 }
 
+fn flow_only_config(config: &TrainConfig) -> TrainConfig {
+    use model::train::config::NetModule;
+    TrainConfig { init_modules: vec![NetModule::Flow], ..config.clone() }
+}
+
 #[test]
 fn stage_three_on_the_true_flow_sees_what_stage_two_sees() {
     use model::train::batch::TrainingBatch;
-    use model::train::objective::stage_loss;
+    use model::train::objective::{stage_loss, Objective};
     use pairs::math::Matrix3;
     let config = tiny();
     let pairs = some_pairs(&config, 2);
@@ -327,8 +359,10 @@ fn stage_three_on_the_true_flow_sees_what_stage_two_sees() {
     let device = Device::flex();
     let batch = TrainingBatch::new(&pairs, &rotations, &config.network, &device).expect("batch");
     let net = fresh_net(&config);
-    let terms =
-        |stage, marks: &[bool]| stage_loss(&net, &batch, stage, false, marks).expect("a loss").1;
+    let objective = Objective::default();
+    let terms = |stage, marks: &[bool]| {
+        stage_loss(&net, &batch, stage, &objective, marks).expect("a loss").1
+    };
     let truth = terms(2, &[]);
     let fed_truth = terms(3, &[true, true]);
     assert_eq!((fed_truth.motion, fed_truth.support), (truth.motion, truth.support));
@@ -337,4 +371,74 @@ fn stage_three_on_the_true_flow_sees_what_stage_two_sees() {
     assert_ne!(predicted.motion, truth.motion, "an untrained flow is not the true one");
     let half = terms(3, &[true, false]);
     assert!(half.motion != truth.motion && half.motion != predicted.motion);
+}
+
+/// Parameter tensors of a module, in visiting order.
+fn parameter_count<M: burn::module::Module>(module: &M) -> usize {
+    struct Count(usize);
+    impl burn::module::ModuleVisitor for Count {
+        fn visit_float<const D: usize>(&mut self, _: &burn::module::Param<Tensor<D>>) {
+            self.0 += 1;
+        }
+    }
+    let mut count = Count(0);
+    module.visit(&mut count);
+    count.0
+}
+
+#[test]
+fn the_release_switches_stop_gradients_where_the_release_does() {
+    use model::network::segmentation::hypotheses::HypothesisModule;
+    use model::network::segmentation::{rpen::RpenModule, support::SupportModule};
+    use model::train::batch::TrainingBatch;
+    use model::train::objective::{stage_loss, Objective};
+    use pairs::math::Matrix3;
+    let config = tiny();
+    let pairs = some_pairs(&config, 2);
+    let rotations = vec![Matrix3::identity(); 2];
+    let device = Device::flex().autodiff();
+    let batch = TrainingBatch::new(&pairs, &rotations, &config.network, &device).expect("batch");
+    let seeded = PartInductionNet::seeded(&config.network, &device, 7);
+    // Output heads start at zero, which passes no gradient back to their inputs: one step
+    // of the default objective in each stage makes every path live.
+    let mut optimizer = burn::optim::AdamConfig::new().init();
+    let mut net = seeded;
+    for stage in [2u8, 3] {
+        let (loss, _) =
+            stage_loss(&net, &batch, stage, &Objective::default(), &[]).expect("a loss");
+        let grads = burn::optim::GradientsParams::from_grads(loss.backward(), &net);
+        net = optimizer.step(1e-2, net, grads);
+    }
+    let grads = |stage, objective: Objective| {
+        let (loss, _) = stage_loss(&net, &batch, stage, &objective, &[]).expect("a loss");
+        gradient_values(&net, &burn::optim::GradientsParams::from_grads(loss.backward(), &net))
+    };
+    // Module order: correspondence, flow, hypotheses, support, RPEN.
+    let total = parameter_count(&net);
+    let rpen = parameter_count(&RpenModule::new(&config.network, &device));
+    let hypotheses = parameter_count(&HypothesisModule::new(&config.network, &device));
+    let support = parameter_count(&SupportModule::new(&config.network, &device));
+    let hyp_range = total - rpen - support - hypotheses..total - rpen - support;
+    let nonzero = |g: &[f32]| g.iter().any(|v| *v != 0.0);
+    // Stage 2 with the hypotheses detached: the support loss's weight does not reach the
+    // hypothesis generator; without the switch it does.
+    for detach in [true, false] {
+        let at = |weight| {
+            let objective = Objective {
+                detach_hypotheses: detach,
+                support_weight: weight,
+                ..Objective::default()
+            };
+            grads(2, objective)[hyp_range.clone()].to_vec()
+        };
+        let (light, heavy) = (at(0.5), at(50.0));
+        assert!(light.iter().any(|g| nonzero(g)), "the motion loss trains the hypotheses");
+        assert_eq!(light == heavy, detach, "detach {detach}");
+    }
+    // Stage 3 training the RPEN alone: every gradient before the RPEN is absent or zero.
+    let rpen_only = grads(3, Objective { rpen_only: true, ..Objective::default() });
+    assert!(rpen_only[..total - rpen].iter().all(|g| !nonzero(g)));
+    assert!(rpen_only[total - rpen..].iter().any(|g| nonzero(g)));
+    let whole = grads(3, Objective::default());
+    assert!(whole[hyp_range].iter().any(|g| nonzero(g)), "the default trains the hypotheses");
 }

@@ -9,7 +9,7 @@ use model::network::PartInductionNet;
 use model::train::batch::TrainingBatch;
 use model::train::checkpoint::CheckpointDir;
 use model::train::config::TrainConfig;
-use model::train::objective::stage_loss;
+use model::train::objective::{stage_loss, Objective};
 use model::train::validation::score;
 use model::train::{stream_config, Budget, RunPaths, Trainer};
 use pairs::math::Matrix3;
@@ -23,7 +23,7 @@ fn full_objective(
 ) -> f32 {
     let rotations = vec![Matrix3::identity(); pairs.len()];
     let batch = TrainingBatch::new(pairs, &rotations, &config.network, device).expect("a batch");
-    stage_loss(net, &batch, 3, false, &[]).expect("a loss").0.into_scalar::<f32>()
+    stage_loss(net, &batch, 3, &Objective::default(), &[]).expect("a loss").0.into_scalar::<f32>()
 }
 
 #[test]

@@ -22,6 +22,12 @@ pub struct BackboneConfig {
     /// Feature propagation MLP widths, coarsest first: one for the global level and one per
     /// set abstraction level.
     pub propagation: Vec<Vec<usize>>,
+    /// Whether the first set abstraction level subtracts each centre's input features from
+    /// its group members' (the release's `centralize_points`, used by the hypothesis
+    /// generator on the flow): the level then sees the flow's local variation, which a
+    /// rigid motion makes linear in the relative position, instead of the flow itself.
+    #[serde(default)]
+    pub centre_features: bool,
 }
 
 impl BackboneConfig {
@@ -48,8 +54,10 @@ impl BackboneConfig {
         let levels = self
             .levels
             .iter()
-            .map(|level| {
-                let layer = level.init(*channels.last().expect("non-empty"), device);
+            .enumerate()
+            .map(|(i, level)| {
+                let centred = self.centre_features && i == 0 && features > 0;
+                let layer = level.init(*channels.last().expect("non-empty"), centred, device);
                 channels.push(level.output());
                 layer
             })
@@ -151,6 +159,7 @@ mod tests {
             ],
             global: vec![32, 64],
             propagation: vec![vec![32], vec![32, 16], vec![16, 16]],
+            centre_features: false,
         }
     }
 

@@ -46,6 +46,21 @@ pub struct NetworkConfig {
     pub rpen_state: Vec<usize>,
     /// RPEN: hidden widths of the continuation and hypothesis-weight heads.
     pub rpen_head: Vec<usize>,
+    /// Whether each hypothesis's `R̂ + I` is projected onto the rotations (true, the
+    /// default, as the paper describes) or used as it is, a general linear map (false, the
+    /// authors' release). P and Q are normalised separately, so a part's true motion is a
+    /// similarity, which only the unprojected form fits exactly.
+    #[serde(default = "yes")]
+    pub hypothesis_projection: bool,
+    /// Whether the flow module multiplies the matching probabilities by the subset size
+    /// (true, the default: a uniform row has entries 1) or takes them as they are (false,
+    /// the authors' release).
+    #[serde(default = "yes")]
+    pub flow_scaled_probabilities: bool,
+}
+
+fn yes() -> bool {
+    true
 }
 
 /// What is wrong with a config.

@@ -14,6 +14,8 @@ use crate::network::sampling::SamplingError;
 pub struct FlowModule {
     pair: SharedMlp,
     points: Backbone,
+    #[module(skip)]
+    scaled: bool,
 }
 
 impl FlowModule {
@@ -21,12 +23,17 @@ impl FlowModule {
     pub fn new(config: &NetworkConfig, device: &Device) -> Self {
         let pair = SharedMlp::new(4, &config.flow_pair, device);
         let width = pair.output(4);
-        Self { pair, points: config.flow.init(width, 3, true, device) }
+        Self {
+            pair,
+            points: config.flow.init(width, 3, true, device),
+            scaled: config.flow_scaled_probabilities,
+        }
     }
 
-    /// The flow on P from the refined matching matrix. The matching probabilities are
-    /// multiplied by `m` so that a uniform row has entries 1 (a departure from the release,
-    /// which feeds them raw; it keeps the input scale independent of the subset size).
+    /// The flow on P from the refined matching matrix. With `flow_scaled_probabilities` the
+    /// matching probabilities are multiplied by `m` so that a uniform row has entries 1 (a
+    /// departure from the release, which feeds them raw; it keeps the input scale
+    /// independent of the subset size).
     ///
     /// # Shapes
     /// `p, q: [batch, m, 3]`, `matching: [batch, m, m]` -> `[batch, m, 3]`
@@ -38,7 +45,8 @@ impl FlowModule {
     ) -> Result<Tensor<3>, SamplingError> {
         let m = p.dims()[1];
         let offsets = q.unsqueeze_dim::<4>(1) - p.clone().unsqueeze_dim::<4>(2); // [batch, m, m, 3]
-        let input = Tensor::cat(vec![offsets, matching.unsqueeze_dim::<4>(3) * m as f32], 3);
+        let scale = if self.scaled { m as f32 } else { 1.0 };
+        let input = Tensor::cat(vec![offsets, matching.unsqueeze_dim::<4>(3) * scale], 3);
         let pooled = max_pool(self.pair.forward(input)).squeeze_dim::<3>(2); // [batch, m, w]
         self.points.forward(p, Some(pooled))
     }

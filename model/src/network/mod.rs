@@ -58,6 +58,33 @@ pub struct FlowOutput {
     pub flow: Tensor<3>,
 }
 
+/// One of the network's modules, by the paper's names (a config's `init_modules`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum NetModule {
+    /// Correspondence proposal (features, matching, mask).
+    Correspondence,
+    /// Flow module.
+    Flow,
+    /// Hypothesis generator.
+    Hypotheses,
+    /// Support (verification) network.
+    Support,
+    /// Recurrent part extraction network.
+    Rpen,
+}
+
+/// Where [`PartInductionNet::segment_with`] stops gradients.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub struct Detached {
+    /// The support module sees the hypotheses as constants: its loss does not train the
+    /// hypothesis generator (the release's stage 2).
+    pub hypotheses: bool,
+    /// The RPEN sees the support matrix as a constant: its losses train the RPEN alone (the
+    /// release's stage 3).
+    pub support: bool,
+}
+
 /// The segmentation module's outputs, on the segmentation subset (the first s points).
 #[derive(Debug, Clone)]
 pub struct SegmentationOutput {
@@ -89,6 +116,27 @@ impl PartInductionNet {
     /// other threads do ([`rng`] explains why that takes care).
     pub fn seeded(config: &NetworkConfig, device: &Device, seed: u64) -> Self {
         rng::seeded(device, seed, || rng::materialised(Self::new(config, device)))
+    }
+
+    /// This network with the modules in `which` taken from `other` (of the same sizes).
+    pub fn with_modules_from(self, other: Self, which: &[NetModule]) -> Self {
+        let pick = |m| which.contains(&m);
+        Self {
+            correspondence: if pick(NetModule::Correspondence) {
+                other.correspondence
+            } else {
+                self.correspondence
+            },
+            flow: if pick(NetModule::Flow) { other.flow } else { self.flow },
+            hypotheses: if pick(NetModule::Hypotheses) {
+                other.hypotheses
+            } else {
+                self.hypotheses
+            },
+            support: if pick(NetModule::Support) { other.support } else { self.support },
+            rpen: if pick(NetModule::Rpen) { other.rpen } else { self.rpen },
+            ..self
+        }
     }
 
     /// Correspondences and flow on the correspondence subsets of P and Q.
@@ -124,14 +172,39 @@ impl PartInductionNet {
         flow: Tensor<3>,
         steps: usize,
     ) -> Result<SegmentationOutput, SamplingError> {
+        self.segment_with(p, flow, steps, Detached::default())
+    }
+
+    /// [`PartInductionNet::segment`] with the gradient stopped where `detached` says (the
+    /// release's `tf.stop_gradient` in stages 2 and 3).
+    ///
+    /// # Shapes
+    /// `p, flow: [batch, m, 3]`
+    pub fn segment_with(
+        &self,
+        p: Tensor<3>,
+        flow: Tensor<3>,
+        steps: usize,
+        detached: Detached,
+    ) -> Result<SegmentationOutput, SamplingError> {
         let [batch, _, _] = p.dims();
         let s = self.seg_points;
         let hypotheses = self.hypotheses.forward(p.clone(), flow.clone(), s)?;
         let (p_s, f_s) = (p.slice([0..batch, 0..s]), flow.slice([0..batch, 0..s]));
-        let support_logits = self.support.forward(p_s.clone(), f_s, &hypotheses);
+        let support_logits = if detached.hypotheses {
+            let stopped = Hypotheses {
+                rotations: hypotheses.rotations.clone().detach(),
+                translations: hypotheses.translations.clone().detach(),
+            };
+            self.support.forward(p_s.clone(), f_s, &stopped)
+        } else {
+            self.support.forward(p_s.clone(), f_s, &hypotheses)
+        };
         let segments = (steps > 0).then(|| {
             let centred = p_s.clone() - p_s.mean_dim(1);
-            self.rpen.forward(centred, activation::sigmoid(support_logits.clone()), steps)
+            let support = activation::sigmoid(support_logits.clone());
+            let support = if detached.support { support.detach() } else { support };
+            self.rpen.forward(centred, support, steps)
         });
         Ok(SegmentationOutput { hypotheses, support_logits, segments })
     }

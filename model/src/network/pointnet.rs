@@ -165,8 +165,9 @@ impl SetAbstractionConfig {
         self.scales.iter().map(|s| s.widths.last().copied().unwrap_or(3)).sum()
     }
 
-    /// The layer for inputs with `features` channels (0 for positions only).
-    pub fn init(&self, features: usize, device: &Device) -> SetAbstraction {
+    /// The layer for inputs with `features` channels (0 for positions only); with
+    /// `centre_features` each group member's features are taken relative to its centre's.
+    pub fn init(&self, features: usize, centre_features: bool, device: &Device) -> SetAbstraction {
         let scales = self
             .scales
             .iter()
@@ -176,7 +177,7 @@ impl SetAbstractionConfig {
                 neighbours: s.neighbours,
             })
             .collect();
-        SetAbstraction { scales, centres: self.centres }
+        SetAbstraction { scales, centres: self.centres, centre_features }
     }
 }
 
@@ -198,6 +199,8 @@ pub struct SetAbstraction {
     scales: Vec<ScaleGroup>,
     #[module(skip)]
     centres: usize,
+    #[module(skip)]
+    centre_features: bool,
 }
 
 impl SetAbstraction {
@@ -223,6 +226,18 @@ impl SetAbstraction {
         let device = xyz.device();
         let new_xyz =
             gather_rows(xyz.clone(), &centre_idx, &device).reshape([batch, self.centres, 3]); // [batch, centres, 3]
+        let centre_f = match &features {
+            Some(f) if self.centre_features => {
+                let channels = f.dims()[2];
+                Some(gather_rows(f.clone(), &centre_idx, &device).reshape([
+                    batch,
+                    self.centres,
+                    1,
+                    channels,
+                ])) // [batch, centres, 1, channels]
+            }
+            _ => None,
+        };
         let pooled =
             self.scales
                 .iter()
@@ -247,6 +262,10 @@ impl SetAbstraction {
                                 let channels = f.dims()[2];
                                 let grouped = gather_rows(f.clone(), &group_idx, &device)
                                     .reshape([batch, self.centres, k, channels]); // [batch, centres, k, channels]
+                                let grouped = match &centre_f {
+                                    Some(c) => grouped - c.clone(),
+                                    None => grouped,
+                                };
                                 Tensor::cat(vec![relative, grouped], 3)
                             }
                             None => relative,

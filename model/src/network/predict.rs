@@ -42,6 +42,10 @@ pub(crate) fn interpolate(
     Ok(out)
 }
 
+/// A hypothesis as a map `x -> A x + t` (`A` is a rotation only when the network projects
+/// its hypotheses; see `hypothesis_projection`).
+pub type LinearMotion = (Matrix3, Vector3);
+
 /// What the segmentation module reads of a pair: P's subsets, their points and the
 /// `[1, m, 3]` tensors of the points and of the flow on them.
 struct SegmentationInput {
@@ -70,6 +74,39 @@ impl PartInductionNet {
         let flow = interpolate(&prep.p, &p_m, &floats(out.flow), 3)?;
         let flow = flow.chunks(3).map(|f| Vector3::new(f[0], f[1], f[2])).collect();
         Ok((flow, interpolate(&prep.p, &p_m, &mask, 1)?))
+    }
+
+    /// The flows the correspondence module's matching alone implies, on every point of P:
+    /// the soft-argmax (each subset point of P moved to its probability-weighted mean point
+    /// of Q's subset) and the argmax (to its most likely point), interpolated from the
+    /// subset like the flow module's. Floors for diagnosis: what the flow module adds.
+    pub fn matching_flows(
+        &self,
+        input: &PairInput,
+    ) -> Result<(Vec<Vector3>, Vec<Vector3>), SamplingError> {
+        let device = self.device();
+        let prep = Prepared::new(input, self.corr_points(), &Matrix3::identity())?;
+        let (p_m, q_m) = (prep.p_points(), prep.q_points());
+        let m = p_m.len();
+        let p = points_tensor(std::slice::from_ref(&p_m), &device);
+        let q = points_tensor(std::slice::from_ref(&q_m), &device);
+        let c = self.correspondences(p.clone(), q.clone())?;
+        let probs = activation::softmax(c.logits, 2); // [1, m, m]
+        let soft = floats(probs.clone().matmul(q) - p);
+        let probs = floats(probs);
+        let hard: Vec<f32> = probs
+            .chunks_exact(m)
+            .zip(&p_m)
+            .flat_map(|(row, x)| {
+                let j = (0..m).max_by(|&a, &b| row[a].total_cmp(&row[b])).unwrap_or(0);
+                [q_m[j][0] - x[0], q_m[j][1] - x[1], q_m[j][2] - x[2]]
+            })
+            .collect();
+        let vectors = |v: Vec<f32>| v.chunks(3).map(|f| Vector3::new(f[0], f[1], f[2])).collect();
+        Ok((
+            vectors(interpolate(&prep.p, &p_m, &soft, 3)?),
+            vectors(interpolate(&prep.p, &p_m, &hard, 3)?),
+        ))
     }
 
     /// P's correspondence subset and the given flow of P on it, as the segmentation module
@@ -109,6 +146,29 @@ impl PartInductionNet {
         Ok((subset, floats(activation::sigmoid(seg.support_logits))))
     }
 
+    /// The hypothesis generator's rigid motions given a flow on P, one per point of the
+    /// segmentation subset: the subset's indices into P, and each hypothesis as the matrix
+    /// `R_i` and translation `t_i` that map a point `x` of P to `R_i x + t_i` (where the
+    /// flow should take it).
+    pub fn hypotheses(
+        &self,
+        input: &PairInput,
+        flow: &[Vector3],
+    ) -> Result<(Vec<usize>, Vec<LinearMotion>), SamplingError> {
+        let SegmentationInput { prep, p, flow: f, .. } = self.segmentation_input(input, flow)?;
+        let seg = self.segment(p, f, 0)?;
+        let r = floats(seg.hypotheses.rotations); // [1, s, 3, 3]
+        let t = floats(seg.hypotheses.translations); // [1, s, 3]
+        let motions = r
+            .chunks_exact(9)
+            .zip(t.chunks_exact(3))
+            .map(|(r, t)| (Matrix3::from_row_slice(r), Vector3::new(t[0], t[1], t[2])))
+            .collect();
+        let mut subset = prep.p_subset;
+        subset.truncate(self.seg_points());
+        Ok((subset, motions))
+    }
+
     /// The segmentation module's soft probabilities on every point of P given a flow on P
     /// (one row per point, one column per RPEN step kept by the continuation score).
     pub fn soft_segments(
@@ -116,13 +176,33 @@ impl PartInductionNet {
         input: &PairInput,
         flow: &[Vector3],
     ) -> Result<Vec<Vec<f32>>, SamplingError> {
+        self.soft_segments_given(input, flow, None)
+    }
+
+    /// [`Self::soft_segments`] with the RPEN fed `support` (an `s × s` row-major matrix of
+    /// probabilities on the segmentation subset, as [`Self::supports`] orders it) instead
+    /// of the support module's: an oracle substitute for diagnosis.
+    pub fn soft_segments_given(
+        &self,
+        input: &PairInput,
+        flow: &[Vector3],
+        support: Option<&[f32]>,
+    ) -> Result<Vec<Vec<f32>>, SamplingError> {
         let SegmentationInput { prep, p_m, p, flow: f } = self.segmentation_input(input, flow)?;
         let steps = self.max_segments();
-        let seg = self.segment(p, f, steps)?;
-        let segments = seg.segments.expect("max_segments is at least 1");
+        let s = self.seg_points();
+        let segments = match support {
+            None => self.segment(p, f, steps)?.segments.expect("max_segments is at least 1"),
+            Some(values) => {
+                let device = self.device();
+                let support = Tensor::<1>::from_floats(values, &device).reshape([1, s, s]); // [1, s, s]
+                let p_s = p.slice([0..1, 0..s]);
+                let centred = p_s.clone() - p_s.mean_dim(1);
+                self.rpen.forward(centred, support, steps)
+            }
+        };
         let go_on = floats(segments.continuation);
         let kept = go_on.iter().position(|&r| r < 0.0).map_or(steps, |t| t + 1);
-        let s = self.seg_points();
         let y = floats(segments.segments.swap_dims(1, 2)); // [s, steps] row-major
         let probs = interpolate(&prep.p, &p_m[..s], &y, steps)?;
         Ok(probs.chunks(steps).map(|row| row[..kept].to_vec()).collect())

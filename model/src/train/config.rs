@@ -11,6 +11,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::network::config::invalid;
 pub use crate::network::config::{ConfigError, NetworkConfig};
+pub use crate::network::NetModule;
 
 /// Points of P and Q per training pair, and how the trainer feeds and schedules them.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -55,6 +56,30 @@ pub struct TrainConfig {
     /// correspondence modules (the paper) or feeds the segmentation module a detached flow
     /// (the authors' release, which freezes the earlier modules; steadier on small batches).
     pub end_to_end: bool,
+    /// Whether stage 2 stops the hypotheses' gradient at the support module's input, so
+    /// the support loss trains the support module alone and the motion loss alone trains
+    /// the hypothesis generator (the release's `tf.stop_gradient(pred_trans)`); false (the
+    /// default) lets the support loss train the hypotheses too.
+    #[serde(default)]
+    pub stage2_detach_hypotheses: bool,
+    /// Whether stage 3 trains the RPEN alone, on hypotheses and supports computed as
+    /// constants, with the segment and continuation losses only (the release); false (the
+    /// default) also trains the hypotheses and support with their stage-2 losses.
+    #[serde(default)]
+    pub stage3_rpen_only: bool,
+    /// Whether the motion loss weighs every point's hypothesis equally, averaging its error
+    /// over the points of its part (the release's row normalisation, so a part weighs as
+    /// its point count), instead of averaging over all same-part point pairs (false, the
+    /// default, where a part weighs as its point count squared).
+    #[serde(default)]
+    pub motion_loss_per_row: bool,
+    /// Weight of the support loss `L_e` (the paper's λ_e, 0.5 by default; the release
+    /// adds it with weight 1).
+    #[serde(default = "half")]
+    pub support_weight: f32,
+    /// Adam's ε (1e-5 by default, burn's; TensorFlow's is 1e-8).
+    #[serde(default = "burn_epsilon")]
+    pub adam_epsilon: f32,
     /// Share of stage 3's pairs, drawn per pair from the seed, whose segmentation module is
     /// fed the ground-truth flow instead of the network's (0, the default: the network's
     /// flow for every pair, as in the paper). Mixing in the true flow keeps the module's
@@ -67,6 +92,11 @@ pub struct TrainConfig {
     /// checkpoint and never reads this file again.
     #[serde(default)]
     pub init_weights: Option<PathBuf>,
+    /// The modules taken from `init_weights`; the others start from the seeded
+    /// initialisation (e.g. `["correspondence", "flow"]` to retrain the segmentation
+    /// module from scratch on a trained flow). Empty (the default): every module.
+    #[serde(default)]
+    pub init_modules: Vec<NetModule>,
     /// Largest angle of the random rotation applied to both clouds of a training pair,
     /// degrees (180: any rotation).
     pub augment_rotation_deg: f64,
@@ -102,6 +132,14 @@ pub enum Schedule {
     Step,
     /// Per stage: linear warm-up over `warmup_pairs`, then a half cosine down to the floor.
     Cosine,
+}
+
+fn half() -> f32 {
+    0.5
+}
+
+fn burn_epsilon() -> f32 {
+    1e-5
 }
 
 fn no_decay() -> f64 {
@@ -170,6 +208,8 @@ impl TrainConfig {
             ("min_learning_rate", self.min_learning_rate),
             ("checkpoint_minutes", self.checkpoint_minutes),
             ("clip_gradient_norm", f64::from(self.clip_gradient_norm)),
+            ("support_weight", f64::from(self.support_weight)),
+            ("adam_epsilon", f64::from(self.adam_epsilon)),
         ] {
             if !(v.is_finite() && v > 0.0) {
                 return Err(invalid(field, "must be a positive number"));
@@ -183,6 +223,9 @@ impl TrainConfig {
         }
         if self.decay_every_pairs == 0 || self.validate_every_pairs == 0 {
             return Err(invalid("decay_every_pairs", "pair counts must be positive"));
+        }
+        if !self.init_modules.is_empty() && self.init_weights.is_none() {
+            return Err(invalid("init_modules", "needs init_weights to take the modules from"));
         }
         if self.stage1_pairs + self.stage2_pairs + self.stage3_pairs == 0 {
             return Err(invalid("stage3_pairs", "at least one stage needs pairs"));

@@ -63,7 +63,10 @@ pub fn same_part(parts: Tensor<2, Int>) -> Tensor<3> {
 }
 
 /// Rigid-motion loss: for every point i's hypothesis `(R_i, t_i)` and every point j of the
-/// same part, `||q_j - (R_i p_j + t_i)||²`, averaged over such (i, j) with both matched.
+/// same part, `||q_j - (R_i p_j + t_i)||²`, averaged over such (i, j) with both matched;
+/// `per_row` first averages over j within each row i and then over the rows (the release's
+/// row-normalised weights), so that every hypothesis counts once and a part weighs as its
+/// point count rather than its square.
 ///
 /// # Shapes
 /// `rotations: [batch, n, 3, 3]`, `translations: [batch, n, 3]`, `p: [batch, n, 3]`,
@@ -76,12 +79,19 @@ pub fn motion_loss(
     q: Tensor<3>,
     parts: Tensor<2, Int>,
     matched: Tensor<2>,
+    per_row: bool,
 ) -> Tensor<1> {
     let moved = rotations.matmul(p.swap_dims(1, 2).unsqueeze_dim::<4>(1)); // [batch, n, 3, n]
     let moved = moved.swap_dims(2, 3) + translations.unsqueeze_dim::<4>(2); // [batch, n, n, 3]
     let error = (q.unsqueeze_dim::<4>(1) - moved).powf_scalar(2.0).sum_dim(3).squeeze_dim::<3>(3); // [batch, n, n]
     let both = matched.clone().unsqueeze_dim::<3>(2) * matched.unsqueeze_dim::<3>(1); // [batch, n, n]
-    weighted_mean(error, same_part(parts) * both)
+    let weights = same_part(parts) * both;
+    if per_row {
+        let rows = weights.clone().sum_dim(2).clamp_min(1.0); // [batch, n, 1]
+        weighted_mean(error, weights / rows)
+    } else {
+        weighted_mean(error, weights)
+    }
 }
 
 /// Support loss `L_e`: binary cross-entropy of the support matrix against "same part".
@@ -220,12 +230,37 @@ mod tests {
             p.clone(),
             parts.clone(),
             matched.clone(),
+            false,
         );
         assert_eq!(scalar(exact), 0.0);
         // Every hypothesis off by one unit along x: each same-part pair costs 1.
         let shifted: Vec<f32> = (0..3).flat_map(|_| [1.0, 0.0, 0.0]).collect();
-        let off = motion_loss(rotations, floats(shifted, [1, 3, 3]), p.clone(), p, parts, matched);
+        let off = motion_loss(
+            rotations.clone(),
+            floats(shifted, [1, 3, 3]),
+            p.clone(),
+            p.clone(),
+            parts.clone(),
+            matched.clone(),
+            false,
+        );
         assert!((scalar(off) - 1.0).abs() < 1e-6);
+        // Only the lone point 2's hypothesis off by one: one of the five same-part pairs
+        // costs 1 (pair average 1/5), but one of the three rows does (row average 1/3).
+        let lone = floats(vec![0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0], [1, 3, 3]);
+        let loss = |per_row| {
+            scalar(motion_loss(
+                rotations.clone(),
+                lone.clone(),
+                p.clone(),
+                p.clone(),
+                parts.clone(),
+                matched.clone(),
+                per_row,
+            ))
+        };
+        assert!((loss(false) - 0.2).abs() < 1e-6, "{}", loss(false));
+        assert!((loss(true) - 1.0 / 3.0).abs() < 1e-6, "{}", loss(true));
     }
 
     #[test]

@@ -201,6 +201,7 @@ impl Trainer {
         fixed: Option<Vec<Pair>>,
     ) -> Result<Self, TrainError> {
         let optimizer = AdamConfig::new()
+            .with_epsilon(config.adam_epsilon)
             .with_grad_clipping(Some(GradientClippingConfig::Norm(config.clip_gradient_norm)))
             .init();
         let (net, optimizer, state) = match paths.checkpoints.load_state()? {
@@ -219,7 +220,13 @@ impl Trainer {
                 let net = match &config.init_weights {
                     Some(path) => {
                         tracing::info!(weights = %path.display(), "starting from weights");
-                        load_weights(&config.network, path, &device)?
+                        let loaded = load_weights(&config.network, path, &device)?;
+                        if config.init_modules.is_empty() {
+                            loaded
+                        } else {
+                            PartInductionNet::seeded(&config.network, &device, config.seed)
+                                .with_modules_from(loaded, &config.init_modules)
+                        }
                     }
                     None => PartInductionNet::seeded(&config.network, &device, config.seed),
                 };

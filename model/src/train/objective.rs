@@ -1,19 +1,62 @@
 //! The multi-task objective of each training stage, with the paper's weights:
-//! stage 1 `L_a + L_b + L_flow`; stage 2 `L_motion + 0.5 L_e` on ground-truth flow;
+//! stage 1 `L_a + L_b + L_flow`; stage 2 `L_motion + λ_e L_e` on ground-truth flow;
 //! stage 3 every term, the segmentation module on the predicted flow (detached unless the
 //! run is end to end), or on the true flow for the pairs a run's `stage3_true_flow` picks.
+//! [`Objective`] holds the switches that follow the authors' release instead: stage 2 with
+//! the hypotheses detached from the support loss, stage 3 training the RPEN alone
+//! (`L_f + L_g`), the motion loss normalised per row.
 
 use burn::prelude::*;
 
 use crate::network::sampling::SamplingError;
-use crate::network::PartInductionNet;
+use crate::network::{Detached, PartInductionNet};
 use crate::train::batch::TrainingBatch;
+use crate::train::config::TrainConfig;
 use crate::train::losses::{
     continuation_loss, correspondence_loss, flow_loss, motion_loss, segment_loss, support_loss,
 };
 
-/// Weight of the support loss `L_e` (the paper's λ_e); every other weight is 1.
-pub const SUPPORT_WEIGHT: f32 = 0.5;
+/// How a run's stages combine their losses (from [`TrainConfig`]'s switches).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Objective {
+    /// Stage 3's segmentation losses reach the flow and correspondence modules.
+    pub end_to_end: bool,
+    /// Stages 2 and 3: the support loss does not train the hypothesis generator.
+    pub detach_hypotheses: bool,
+    /// Stage 3 trains the RPEN alone, with `L_f + L_g`.
+    pub rpen_only: bool,
+    /// The motion loss weighs every row (hypothesis) equally.
+    pub motion_per_row: bool,
+    /// Weight of `L_e` (λ_e); every other weight is 1.
+    pub support_weight: f32,
+}
+
+impl Objective {
+    /// The objective a config asks for.
+    pub fn of(config: &TrainConfig) -> Self {
+        Self {
+            end_to_end: config.end_to_end,
+            detach_hypotheses: config.stage2_detach_hypotheses,
+            rpen_only: config.stage3_rpen_only,
+            motion_per_row: config.motion_loss_per_row,
+            support_weight: config.support_weight,
+        }
+    }
+}
+
+impl Default for Objective {
+    /// The paper's objective as this crate trained it before the release's switches: end to
+    /// end off, nothing detached, pair-averaged motion loss, λ_e = 0.5.
+    fn default() -> Self {
+        Self {
+            end_to_end: false,
+            detach_hypotheses: false,
+            rpen_only: false,
+            motion_per_row: false,
+            support_weight: 0.5,
+        }
+    }
+}
 
 /// The value of every loss term of a step (absent when the stage does not use it).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -105,21 +148,26 @@ fn mix_true_flow(predicted: Tensor<3>, truth: Tensor<3>, true_flow: &[bool]) -> 
     predicted * keep + truth * mask
 }
 
-/// The stage's total loss (for `backward`) and its terms; `end_to_end` lets stage 3's
-/// segmentation losses reach the flow and correspondence modules, and in stage 3 the pairs
-/// `true_flow` marks (by batch index; missing entries are `false`) feed the segmentation
-/// module the ground-truth flow instead of the predicted one.
+/// The stage's total loss (for `backward`) and its terms under `objective`; in stage 3 the
+/// pairs `true_flow` marks (by batch index; missing entries are `false`) feed the
+/// segmentation module the ground-truth flow instead of the predicted one.
 pub fn stage_loss(
     net: &PartInductionNet,
     batch: &TrainingBatch,
     stage: u8,
-    end_to_end: bool,
+    objective: &Objective,
     true_flow: &[bool],
 ) -> Result<(Tensor<1>, LossTerms), SamplingError> {
+    let end_to_end = objective.end_to_end;
     let truth = &batch.truth;
     let mut sum = Sum { total: None, terms: LossTerms::default() };
+    let rpen_only = stage == 3 && objective.rpen_only;
     let flow = if stage == 2 {
         truth.flow.clone()
+    } else if rpen_only {
+        // The release's stage 3: every module before the RPEN runs as a constant.
+        let predicted = net.flow(batch.p.clone(), batch.q.clone())?.flow.detach();
+        mix_true_flow(predicted, truth.flow.clone(), true_flow)
     } else {
         let out = net.flow(batch.p.clone(), batch.q.clone())?;
         let c = out.correspondence;
@@ -142,7 +190,17 @@ pub fn stage_loss(
     };
     let steps =
         if stage == 3 { truth.parts_per_pair.iter().copied().max().unwrap_or(1) + 2 } else { 0 };
-    let seg = net.segment(batch.p.clone(), flow, steps)?;
+    let detached =
+        Detached { hypotheses: objective.detach_hypotheses || rpen_only, support: rpen_only };
+    let seg = net.segment_with(batch.p.clone(), flow, steps, detached)?;
+    if rpen_only {
+        let segments = seg.segments.expect("stage 3 asks for RPEN steps");
+        sum.add(segment_loss(segments.segments, truth.parts.clone()), 1.0, |t| &mut t.segment);
+        sum.add(continuation_loss(segments.continuation, &truth.parts_per_pair), 1.0, |t| {
+            &mut t.continuation
+        });
+        return Ok((sum.total.expect("two terms"), sum.terms));
+    }
     let [b, _, _] = batch.p.dims();
     let s = net.seg_points();
     let p_s = batch.p.clone().slice([0..b, 0..s]);
@@ -155,9 +213,10 @@ pub fn stage_loss(
         q_s,
         truth.parts.clone(),
         visible_s,
+        objective.motion_per_row,
     );
     sum.add(motion, 1.0, |t| &mut t.motion);
-    sum.add(support_loss(seg.support_logits, truth.parts.clone()), SUPPORT_WEIGHT, |t| {
+    sum.add(support_loss(seg.support_logits, truth.parts.clone()), objective.support_weight, |t| {
         &mut t.support
     });
     if let Some(segments) = seg.segments {

@@ -18,7 +18,7 @@ use crate::network::PartInductionNet;
 use crate::train::batch::TrainingBatch;
 use crate::train::config::TrainConfig;
 use crate::train::log::StepPhases;
-use crate::train::objective::{stage_loss, LossTerms};
+use crate::train::objective::{stage_loss, LossTerms, Objective};
 
 /// The augmentation rotation of pair `index` of step `step`: a uniformly random axis and an
 /// angle uniform in `[0, max_deg]`.
@@ -80,7 +80,7 @@ pub fn batch_gradients(
         let batch = TrainingBatch::new(pairs, rotations, &config.network, device)?;
         phases.batch = clock.elapsed().as_secs_f64();
         let clock = Instant::now();
-        let (loss, terms) = stage_loss(net, &batch, stage, config.end_to_end, marks)?;
+        let (loss, terms) = stage_loss(net, &batch, stage, &Objective::of(config), marks)?;
         let value = loss.clone().into_scalar::<f32>();
         phases.forward = clock.elapsed().as_secs_f64();
         let clock = Instant::now();

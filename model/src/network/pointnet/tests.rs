@@ -52,7 +52,7 @@ fn permuting_the_points_permutes_the_dense_outputs() {
     let permuted: Vec<f32> =
         permutation.iter().flat_map(|&i| values[i * 3..i * 3 + 3].to_vec()).collect();
     let (sa, fp) = rng::seeded(&device, 2, || {
-        let sa = SetAbstractionConfig::single(12, 0.4, 8, vec![16, 16]).init(0, &device);
+        let sa = SetAbstractionConfig::single(12, 0.4, 8, vec![16, 16]).init(0, false, &device);
         (rng::materialised(sa), rng::materialised(FeaturePropagation::new(16, &[8], &device)))
     });
     let run = |v: Vec<f32>| {
@@ -74,7 +74,7 @@ fn gradients_reach_the_grouped_features() {
     let xyz = tensor(cloud(32, 2), [1, 32, 3], &device);
     let features = tensor(cloud(32, 3), [1, 32, 3], &device).require_grad();
     let sa = rng::seeded(&device, 3, || {
-        rng::materialised(SetAbstractionConfig::single(8, 0.5, 6, vec![8]).init(3, &device))
+        rng::materialised(SetAbstractionConfig::single(8, 0.5, 6, vec![8]).init(3, false, &device))
     });
     let (_, out) = sa.forward(xyz, Some(features.clone())).expect("enough points");
     let grads = out.sum().backward();
@@ -94,13 +94,13 @@ fn gradients_reach_the_grouped_features() {
 fn too_small_clouds_are_errors_not_panics() {
     let device = Device::flex();
     let sa = rng::seeded(&device, 4, || {
-        rng::materialised(SetAbstractionConfig::single(16, 0.4, 8, vec![8]).init(0, &device))
+        rng::materialised(SetAbstractionConfig::single(16, 0.4, 8, vec![8]).init(0, false, &device))
     });
     let err = sa.forward(tensor(cloud(10, 4), [1, 10, 3], &device), None).expect_err("10 < 16");
     assert_eq!(err, SamplingError::TooFewPoints { wanted: 16, points: 10 });
     let same = tensor(vec![0.25; 30], [1, 10, 3], &device);
     let small = rng::seeded(&device, 5, || {
-        rng::materialised(SetAbstractionConfig::single(4, 0.4, 8, vec![8]).init(0, &device))
+        rng::materialised(SetAbstractionConfig::single(4, 0.4, 8, vec![8]).init(0, false, &device))
     });
     let (_, f) = small.forward(same, None).expect("duplicates are fine");
     assert!(rows(f).iter().flatten().all(|v| v.is_finite()));
@@ -116,4 +116,30 @@ fn global_abstraction_pools_each_cloud() {
         tensor(cloud(20, 6)[..40].to_vec(), [2, 10, 2], &device),
     );
     assert_eq!(out.dims(), [2, 1, 4]);
+}
+
+#[test]
+fn centred_features_ignore_a_uniform_offset() {
+    // With the release's `centralize_points` a uniform flow (a pure translation) reaches the
+    // first level as zeros, so adding one changes nothing; without it the output moves.
+    let device = Device::flex();
+    let xyz = tensor(cloud(32, 5), [1, 32, 3], &device);
+    let features = tensor(cloud(32, 6), [1, 32, 3], &device);
+    let shifted = features.clone() + tensor(vec![0.3, -0.2, 0.5], [1, 1, 3], &device);
+    for centred in [true, false] {
+        let sa = rng::seeded(&device, 7, || {
+            rng::materialised(
+                SetAbstractionConfig::single(8, 0.5, 6, vec![8]).init(3, centred, &device),
+            )
+        });
+        let a = rows(sa.forward(xyz.clone(), Some(features.clone())).expect("32 points").1);
+        let b = rows(sa.forward(xyz.clone(), Some(shifted.clone())).expect("32 points").1);
+        let moved = a.iter().flatten().zip(b.iter().flatten()).map(|(x, y)| (x - y).abs());
+        let largest = moved.fold(0.0f32, f32::max);
+        if centred {
+            assert!(largest < 1e-5, "centred output moved by {largest}");
+        } else {
+            assert!(largest > 1e-3, "uncentred output did not move ({largest})");
+        }
+    }
 }

@@ -1,6 +1,9 @@
 //! Hypothesis generation: a rigid motion `(R_i, t_i)` per point of P from a PointNet++ on
 //! (centred positions, flow), in the paper's residual parameterisation:
-//! `R_i = proj(R̂_i + I)`, `t_i = -(R_i - I) x_i + f_i + t̂_i`.
+//! `R_i = proj(R̂_i + I)`, `t_i = -(R_i - I) x_i + f_i + t̂_i`. Without the projection
+//! (`hypothesis_projection = false`, the authors' release) `R_i = R̂_i + I` is any linear
+//! map, which fits the similarity a part undergoes between two separately normalised
+//! clouds exactly.
 
 use burn::prelude::*;
 
@@ -22,12 +25,17 @@ pub struct Hypotheses {
 #[derive(Module, Debug)]
 pub struct HypothesisModule {
     points: Backbone,
+    #[module(skip)]
+    project: bool,
 }
 
 impl HypothesisModule {
     /// The module with `config`'s sizes.
     pub fn new(config: &NetworkConfig, device: &Device) -> Self {
-        Self { points: config.hypothesis.init(3, 12, true, device) }
+        Self {
+            points: config.hypothesis.init(3, 12, true, device),
+            project: config.hypothesis_projection,
+        }
     }
 
     /// Hypotheses for the first `s` points of P (the backbone sees all m points).
@@ -45,7 +53,11 @@ impl HypothesisModule {
         let out = self.points.forward(centred, Some(flow.clone()))?.slice([0..batch, 0..s]); // [batch, s, 12]
         let residual = out.clone().slice([0..batch, 0..s, 0..9]).reshape([batch * s, 3, 3]);
         let eye = Tensor::<2>::eye(3, &p.device()).unsqueeze_dim::<3>(0);
-        let rotations = project_to_rotation(residual + eye.clone(), ITERATIONS); // [batch s, 3, 3]
+        let rotations = if self.project {
+            project_to_rotation(residual + eye.clone(), ITERATIONS) // [batch s, 3, 3]
+        } else {
+            residual + eye.clone()
+        };
         let x = p.slice([0..batch, 0..s]).reshape([batch * s, 3, 1]);
         let turned = (rotations.clone() - eye).matmul(x).reshape([batch, s, 3]);
         let f = flow.slice([0..batch, 0..s]);

@@ -1,0 +1,373 @@
+//! Where the network loses accuracy, stage by stage, by oracle substitution (`model
+//! diagnose`): every row replaces one stage's output with what a perfect or a classical
+//! stage would give and scores the rest of the single pass on it.
+//!
+//! - **Flow floors**: the flow module's flow against the flows the matching alone implies
+//!   (soft-argmax and argmax over Q's subset) and against the true flow sampled at a subset
+//!   and interpolated back (what the subset size alone costs).
+//! - **Segmentation on the true flow**: the support module's matrix, a threshold rule on the
+//!   motion residual `‖R_i x_j + t_i − (x_j + f_j)‖ < τ` with the network's hypotheses or with
+//!   a rigid or similarity fit per true part (exact hypotheses), and the true same-part
+//!   matrix, each fed to the RPEN; the support IoU of the matrix and the IoU of the pass.
+//! - **The subset ceiling**: the true labels on the segmentation and correspondence subsets,
+//!   interpolated to every point (argmax, and the graph cut of [`segment_pair`]).
+//! - **Scale**: the one scale of each pair's part motions, P's and Q's separate
+//!   normalisations (a rotation cannot fit it; a similarity can).
+
+use pairs::math::{Point3, Vector3};
+use pairs::metrics::{epe, matched_iou, MetricError};
+use pairs::transform::fit_similarity_weighted;
+use pairs::{Pair, PartId};
+
+use crate::inference::labels::{segment_pair, HardLabelParams};
+use crate::network::predict::{interpolate, LinearMotion};
+use crate::network::sampling::{farthest_point_sampling, SamplingError};
+use crate::network::PartInductionNet;
+use crate::train::validation::support_iou;
+
+/// Settings of [`diagnose`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct DiagnoseParams {
+    /// Thresholds τ of the residual rule, normalised units; one row per value.
+    pub thresholds: Vec<f32>,
+    /// Subset sizes at which the true flow is sampled and interpolated back.
+    pub flow_samples: Vec<usize>,
+    /// The graph cut of the subset-ceiling rows.
+    pub hard: HardLabelParams,
+}
+
+impl Default for DiagnoseParams {
+    /// τ from 0.01 to 0.08 (doubling), the true flow at 128 and 256 points (the `cpu` and
+    /// the release's correspondence subsets), the evaluator's graph cut.
+    fn default() -> Self {
+        Self {
+            thresholds: vec![0.01, 0.02, 0.04, 0.08],
+            flow_samples: vec![128, 256],
+            hard: HardLabelParams::default(),
+        }
+    }
+}
+
+/// One row of the table: what was substituted, and the scores that apply to it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Row {
+    /// What the row measures.
+    pub name: String,
+    /// Support IoU of the support matrix (rows on the segmentation module's input).
+    pub support_iou: Option<f64>,
+    /// Matched IoU of the pass over every ground-truth part of every pair.
+    pub iou: Option<f64>,
+    /// End-point error of the flow, averaged over pairs.
+    pub epe: Option<f64>,
+}
+
+/// The per-pair scale of the part motions: `|s - 1|` summarised over the pairs.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ScaleSummary {
+    /// Median of `|s - 1|`.
+    pub median: f64,
+    /// 90th percentile of `|s - 1|`.
+    pub p90: f64,
+    /// Largest `|s - 1|`.
+    pub max: f64,
+}
+
+/// The whole diagnosis of a set of pairs.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Diagnosis {
+    /// Pairs scored.
+    pub pairs: usize,
+    /// The rows, in the order of the module docs.
+    pub rows: Vec<Row>,
+    /// The pairs' motion scales.
+    pub scale: ScaleSummary,
+}
+
+impl Diagnosis {
+    /// The table as CSV (`row,support_iou,iou,epe`; empty where a score does not apply).
+    pub fn to_csv(&self) -> String {
+        let cell = |v: Option<f64>| v.map_or(String::new(), |v| format!("{v:.4}"));
+        let mut out = String::from("row,support_iou,iou,epe\n");
+        for r in &self.rows {
+            out += &format!(
+                "\"{}\",{},{},{}\n",
+                r.name,
+                cell(r.support_iou),
+                cell(r.iou),
+                cell(r.epe)
+            );
+        }
+        let s = self.scale;
+        out +=
+            &format!("\"|s - 1| median / p90 / max\",{:.4},{:.4},{:.4}\n", s.median, s.p90, s.max);
+        out
+    }
+}
+
+/// Why a diagnosis failed.
+#[derive(Debug, thiserror::Error)]
+pub enum DiagnoseError {
+    /// The network could not run on a pair.
+    #[error("pair {pair}: {source}")]
+    Network {
+        /// The pair's id.
+        pair: String,
+        /// What went wrong.
+        #[source]
+        source: SamplingError,
+    },
+    /// A metric rejected a prediction.
+    #[error("pair {pair}: {source}")]
+    Metric {
+        /// The pair's id.
+        pair: String,
+        /// What went wrong.
+        #[source]
+        source: MetricError,
+    },
+    /// A true part has too few points to fit its motion.
+    #[error("pair {pair}: no motion fits part {part}")]
+    Fit {
+        /// The pair's id.
+        pair: String,
+        /// The part.
+        part: PartId,
+    },
+    /// Nothing to diagnose.
+    #[error("no pairs to diagnose")]
+    Empty,
+}
+
+/// Sums of one row's scores over pairs.
+#[derive(Debug, Clone, Default)]
+struct Sums {
+    support: f64,
+    support_n: usize,
+    iou: f64,
+    parts: usize,
+    epe: f64,
+    epe_n: usize,
+}
+
+impl Sums {
+    fn row(&self, name: String) -> Row {
+        let mean = |v: f64, n: usize| (n > 0).then(|| v / n as f64);
+        Row {
+            name,
+            support_iou: mean(self.support, self.support_n),
+            iou: mean(self.iou, self.parts),
+            epe: mean(self.epe, self.epe_n),
+        }
+    }
+}
+
+/// Argmax labels of soft probabilities (one row per point).
+fn argmax_labels(probs: &[Vec<f32>]) -> Vec<u32> {
+    probs
+        .iter()
+        .map(|row| {
+            (0..row.len()).max_by(|&a, &b| row[a].total_cmp(&row[b]).then(b.cmp(&a))).unwrap_or(0)
+                as u32
+        })
+        .collect()
+}
+
+/// The residual rule's 0/1 support matrix on the subset points `x` with flow `f`.
+fn rule_support(x: &[Point3], f: &[Vector3], motions: &[LinearMotion], tau: f32) -> Vec<f32> {
+    motions
+        .iter()
+        .flat_map(|(r, t)| {
+            x.iter().zip(f).map(move |(xj, fj)| {
+                let residual = r * xj.coords + t - (xj.coords + fj);
+                if residual.norm() < tau {
+                    1.0
+                } else {
+                    0.0
+                }
+            })
+        })
+        .collect()
+}
+
+/// The motion of every true part fitted to the true flow (rigid, or a similarity), as the
+/// hypothesis of each subset point of that part.
+fn fitted_hypotheses(
+    pair: &Pair,
+    subset: &[usize],
+    with_scale: bool,
+) -> Result<Vec<LinearMotion>, DiagnoseError> {
+    let truth = pair.truth();
+    let p = &pair.input().p.points;
+    let moved: Vec<Point3> = p.iter().zip(&truth.flow).map(|(x, f)| x + f).collect();
+    let k = truth.part_p.iter().copied().max().map_or(0, |m| m as usize + 1);
+    let mut fits = Vec::with_capacity(k);
+    for part in 0..k {
+        let weights: Vec<f32> =
+            truth.part_p.iter().map(|&l| if l as usize == part { 1.0 } else { 0.0 }).collect();
+        let fit = fit_similarity_weighted(p, &moved, &weights, with_scale);
+        fits.push(fit.map(|s| (s.rotation * s.scale, s.translation)));
+    }
+    subset
+        .iter()
+        .map(|&i| {
+            let part = truth.part_p[i];
+            fits[part as usize]
+                .ok_or_else(|| DiagnoseError::Fit { pair: pair.id().to_string(), part })
+        })
+        .collect()
+}
+
+/// Diagnoses `net` on `pairs` (see the module docs for the rows).
+pub fn diagnose(
+    net: &PartInductionNet,
+    pairs: &[Pair],
+    params: &DiagnoseParams,
+    mut progress: impl FnMut(usize),
+) -> Result<Diagnosis, DiagnoseError> {
+    if pairs.is_empty() {
+        return Err(DiagnoseError::Empty);
+    }
+    let taus = &params.thresholds;
+    let names: Vec<String> = [
+        "flow: the flow module".to_string(),
+        "flow: the matching's soft-argmax".to_string(),
+        "flow: the matching's argmax".to_string(),
+    ]
+    .into_iter()
+    .chain(
+        params
+            .flow_samples
+            .iter()
+            .map(|n| format!("flow: the true flow at {n} points, interpolated")),
+    )
+    .chain(["true flow: the support module (net-seg@gt-flow, one pass)".to_string()])
+    .chain(
+        ["the network's hypotheses", "a rigid fit per true part", "a similarity fit per true part"]
+            .iter()
+            .flat_map(|source| {
+                taus.iter().map(move |t| format!("true flow: rule τ = {t} on {source}"))
+            }),
+    )
+    .chain(["true flow: the true same-part matrix".to_string()])
+    .chain([net.seg_points(), net.corr_points()].iter().flat_map(|n| {
+        [
+            format!("ceiling: true labels at {n} points, interpolated (argmax)"),
+            format!("ceiling: true labels at {n} points, interpolated (graph cut)"),
+        ]
+    }))
+    .collect();
+    let mut sums = vec![Sums::default(); names.len()];
+    let mut scales = Vec::with_capacity(pairs.len());
+    for (done, pair) in pairs.iter().enumerate() {
+        let id = || pair.id().to_string();
+        let network = |source| DiagnoseError::Network { pair: id(), source };
+        let metric = |source| DiagnoseError::Metric { pair: id(), source };
+        let (input, truth) = (pair.input(), pair.truth());
+        let points = &input.p.points;
+        let mut row = 0;
+        let add_epe = |sums: &mut [Sums], row: &mut usize, flow: &[Vector3]| {
+            let e = epe(flow, &truth.flow).map_err(metric)?;
+            sums[*row].epe += e;
+            sums[*row].epe_n += 1;
+            *row += 1;
+            Ok::<_, DiagnoseError>(())
+        };
+        let (flow, _) = net.flow_pass(input).map_err(network)?;
+        add_epe(&mut sums, &mut row, &flow)?;
+        let (soft, hard) = net.matching_flows(input).map_err(network)?;
+        add_epe(&mut sums, &mut row, &soft)?;
+        add_epe(&mut sums, &mut row, &hard)?;
+        let plain: Vec<[f32; 3]> = points.iter().map(|x| [x.x, x.y, x.z]).collect();
+        for &n in &params.flow_samples {
+            let subset = farthest_point_sampling(&plain, n.min(plain.len())).map_err(network)?;
+            let sub: Vec<[f32; 3]> = subset.iter().map(|&i| plain[i]).collect();
+            let values: Vec<f32> = subset
+                .iter()
+                .flat_map(|&i| [truth.flow[i].x, truth.flow[i].y, truth.flow[i].z])
+                .collect();
+            let back = interpolate(&plain, &sub, &values, 3).map_err(network)?;
+            let back: Vec<Vector3> =
+                back.chunks(3).map(|f| Vector3::new(f[0], f[1], f[2])).collect();
+            add_epe(&mut sums, &mut row, &back)?;
+        }
+        // Segmentation on the true flow.
+        let add_pass = |sums: &mut [Sums], row: &mut usize, support: Option<(&[f32], f64)>| {
+            let probs = net
+                .soft_segments_given(input, &truth.flow, support.map(|(s, _)| s))
+                .map_err(network)?;
+            let matching = matched_iou(&argmax_labels(&probs), &truth.part_p).map_err(metric)?;
+            let r = &mut sums[*row];
+            r.iou += matching.iou.iter().sum::<f64>();
+            r.parts += matching.iou.len();
+            if let Some((_, s)) = support {
+                r.support += s;
+                r.support_n += 1;
+            }
+            *row += 1;
+            Ok::<_, DiagnoseError>(())
+        };
+        let (subset, probs) = net.supports(input, &truth.flow).map_err(network)?;
+        let parts_s: Vec<PartId> = subset.iter().map(|&i| truth.part_p[i]).collect();
+        let own = support_iou(&probs, &parts_s);
+        sums[row].support += own;
+        sums[row].support_n += 1;
+        add_pass(&mut sums, &mut row, None)?;
+        let x: Vec<Point3> = subset.iter().map(|&i| points[i]).collect();
+        let f: Vec<Vector3> = subset.iter().map(|&i| truth.flow[i]).collect();
+        let (_, own_motions) = net.hypotheses(input, &truth.flow).map_err(network)?;
+        for motions in [
+            own_motions,
+            fitted_hypotheses(pair, &subset, false)?,
+            fitted_hypotheses(pair, &subset, true)?,
+        ] {
+            for &tau in taus {
+                let support = rule_support(&x, &f, &motions, tau);
+                let score = support_iou(&support, &parts_s);
+                add_pass(&mut sums, &mut row, Some((&support, score)))?;
+            }
+        }
+        let same: Vec<f32> = parts_s
+            .iter()
+            .flat_map(|a| parts_s.iter().map(move |b| if a == b { 1.0 } else { 0.0 }))
+            .collect();
+        let score = support_iou(&same, &parts_s);
+        add_pass(&mut sums, &mut row, Some((&same, score)))?;
+        // The subset ceiling.
+        let k = truth.part_p.iter().copied().max().map_or(1, |m| m as usize + 1);
+        for n in [net.seg_points(), net.corr_points()] {
+            let subset = farthest_point_sampling(&plain, n.min(plain.len())).map_err(network)?;
+            let sub: Vec<[f32; 3]> = subset.iter().map(|&i| plain[i]).collect();
+            let one_hot: Vec<f32> = subset
+                .iter()
+                .flat_map(|&i| {
+                    (0..k).map(move |c| if truth.part_p[i] as usize == c { 1.0 } else { 0.0 })
+                })
+                .collect();
+            let probs: Vec<Vec<f32>> = interpolate(&plain, &sub, &one_hot, k)
+                .map_err(network)?
+                .chunks(k)
+                .map(<[f32]>::to_vec)
+                .collect();
+            for labels in [
+                argmax_labels(&probs),
+                segment_pair(points, &input.q.points, &probs, &truth.flow, &params.hard).labels_p,
+            ] {
+                let matching = matched_iou(&labels, &truth.part_p).map_err(metric)?;
+                sums[row].iou += matching.iou.iter().sum::<f64>();
+                sums[row].parts += matching.iou.len();
+                row += 1;
+            }
+        }
+        debug_assert_eq!(row, names.len());
+        scales.push(f64::from((truth.motions.first().map_or(1.0, |m| m.scale) - 1.0).abs()));
+        progress(done + 1);
+    }
+    scales.sort_by(f64::total_cmp);
+    let at =
+        |q: f64| scales[((q * (scales.len() - 1) as f64).round() as usize).min(scales.len() - 1)];
+    Ok(Diagnosis {
+        pairs: pairs.len(),
+        rows: names.into_iter().zip(&sums).map(|(name, s)| s.row(name)).collect(),
+        scale: ScaleSummary { median: at(0.5), p90: at(0.9), max: at(1.0) },
+    })
+}
