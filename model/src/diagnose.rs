@@ -15,15 +15,15 @@
 //!   normalisations (a rotation cannot fit it; a similarity can).
 
 use pairs::math::{Point3, Vector3};
-use pairs::metrics::{epe, matched_iou, MetricError};
+use pairs::metrics::{epe, matched_iou};
 use pairs::transform::fit_similarity_weighted;
 use pairs::{Pair, PartId};
 
-use crate::inference::labels::{segment_pair, HardLabelParams};
+use crate::inference::labels::{argmax, segment_pair, HardLabelParams};
 use crate::network::predict::{interpolate, LinearMotion};
-use crate::network::sampling::{farthest_point_sampling, SamplingError};
+use crate::network::sampling::farthest_point_sampling;
 use crate::network::PartInductionNet;
-use crate::train::validation::support_iou;
+use crate::train::validation::{support_iou, ScoreError};
 
 /// Settings of [`diagnose`].
 #[derive(Debug, Clone, PartialEq)]
@@ -107,24 +107,9 @@ impl Diagnosis {
 /// Why a diagnosis failed.
 #[derive(Debug, thiserror::Error)]
 pub enum DiagnoseError {
-    /// The network could not run on a pair.
-    #[error("pair {pair}: {source}")]
-    Network {
-        /// The pair's id.
-        pair: String,
-        /// What went wrong.
-        #[source]
-        source: SamplingError,
-    },
-    /// A metric rejected a prediction.
-    #[error("pair {pair}: {source}")]
-    Metric {
-        /// The pair's id.
-        pair: String,
-        /// What went wrong.
-        #[source]
-        source: MetricError,
-    },
+    /// The network or a metric failed on a pair.
+    #[error(transparent)]
+    Score(#[from] ScoreError),
     /// A true part has too few points to fit its motion.
     #[error("pair {pair}: no motion fits part {part}")]
     Fit {
@@ -159,17 +144,6 @@ impl Sums {
             epe: mean(self.epe, self.epe_n),
         }
     }
-}
-
-/// Argmax labels of soft probabilities (one row per point).
-fn argmax_labels(probs: &[Vec<f32>]) -> Vec<u32> {
-    probs
-        .iter()
-        .map(|row| {
-            (0..row.len()).max_by(|&a, &b| row[a].total_cmp(&row[b]).then(b.cmp(&a))).unwrap_or(0)
-                as u32
-        })
-        .collect()
 }
 
 /// The residual rule's 0/1 support matrix on the subset points `x` with flow `f`.
@@ -260,8 +234,8 @@ pub fn diagnose(
     let mut scales = Vec::with_capacity(pairs.len());
     for (done, pair) in pairs.iter().enumerate() {
         let id = || pair.id().to_string();
-        let network = |source| DiagnoseError::Network { pair: id(), source };
-        let metric = |source| DiagnoseError::Metric { pair: id(), source };
+        let network = |source| ScoreError::Predict { pair: id(), source };
+        let metric = |source| ScoreError::Metric { pair: id(), source };
         let (input, truth) = (pair.input(), pair.truth());
         let points = &input.p.points;
         let mut row = 0;
@@ -295,7 +269,7 @@ pub fn diagnose(
             let probs = net
                 .soft_segments_given(input, &truth.flow, support.map(|(s, _)| s))
                 .map_err(network)?;
-            let matching = matched_iou(&argmax_labels(&probs), &truth.part_p).map_err(metric)?;
+            let matching = matched_iou(&argmax(&probs), &truth.part_p).map_err(metric)?;
             let r = &mut sums[*row];
             r.iou += matching.iou.iter().sum::<f64>();
             r.parts += matching.iou.len();
@@ -349,7 +323,7 @@ pub fn diagnose(
                 .map(<[f32]>::to_vec)
                 .collect();
             for labels in [
-                argmax_labels(&probs),
+                argmax(&probs),
                 segment_pair(points, &input.q.points, &probs, &truth.flow, &params.hard).labels_p,
             ] {
                 let matching = matched_iou(&labels, &truth.part_p).map_err(metric)?;

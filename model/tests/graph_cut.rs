@@ -4,20 +4,9 @@
 //! clouds a cut can split a label's region (found by this test; e.g. 6 fragments before, 7
 //! after), so that property is checked on a noisy hinge in `labels/hard.rs` instead.
 
-use model::inference::labels::{hard_labels, HardLabelParams};
+use model::inference::labels::{argmax, hard_labels, HardLabelParams};
 use pairs::math::{Point3, Vector3};
 use proptest::prelude::*;
-
-/// The argmax labelling of `probs` (ties to the lower column, as the step itself does).
-fn argmax(probs: &[Vec<f32>]) -> Vec<u32> {
-    probs
-        .iter()
-        .map(|row| {
-            (0..row.len()).max_by(|&a, &b| row[a].total_cmp(&row[b]).then(b.cmp(&a))).unwrap_or(0)
-                as u32
-        })
-        .collect()
-}
 
 fn distinct(labels: &[u32]) -> usize {
     let mut v = labels.to_vec();

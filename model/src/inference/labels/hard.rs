@@ -89,8 +89,9 @@ fn normalised(probs: &[Vec<Real>]) -> Vec<Vec<Real>> {
         .collect()
 }
 
-/// The column of the largest entry of each row (ties to the lower column).
-fn argmax(rows: &[Vec<Real>]) -> Vec<u32> {
+/// The column of the largest entry of each row (ties to the lower column): the labels of
+/// soft segment probabilities without a graph cut.
+pub fn argmax(rows: &[Vec<Real>]) -> Vec<u32> {
     rows.iter()
         .map(|row| {
             (0..row.len()).max_by(|&a, &b| row[a].total_cmp(&row[b]).then(b.cmp(&a))).unwrap_or(0)

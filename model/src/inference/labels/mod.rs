@@ -11,5 +11,5 @@ mod motions;
 pub use expansion::{alpha_expansion, potts_energy};
 pub use fragments::merge_fragments;
 pub use graph::KnnGraph;
-pub use hard::{hard_labels, label_q, segment_pair, HardLabelParams, HardSegmentation};
+pub use hard::{argmax, hard_labels, label_q, segment_pair, HardLabelParams, HardSegmentation};
 pub use motions::fit_motions_shared_scale;
