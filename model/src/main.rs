@@ -173,6 +173,10 @@ struct RunArgs {
     /// differ a lot).
     #[arg(long)]
     rotation_search: bool,
+    /// Global flow-then-Kabsch alignments of P before the passes (the authors' release
+    /// does 2).
+    #[arg(long, default_value_t = 0)]
+    global_alignments: usize,
     /// Points per cloud (files with more are reduced by farthest-point sampling).
     #[arg(long, default_value_t = 512)]
     points: usize,
@@ -183,6 +187,7 @@ impl RunArgs {
         InferenceParams {
             max_iterations: self.iterations.max(1),
             rotation_search: self.rotation_search,
+            global_alignments: self.global_alignments,
             ..InferenceParams::iterative()
         }
     }
