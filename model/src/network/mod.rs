@@ -201,12 +201,26 @@ impl PartInductionNet {
             self.support.forward(p_s.clone(), f_s, &hypotheses)
         };
         let segments = (steps > 0).then(|| {
-            let centred = p_s.clone() - p_s.mean_dim(1);
             let support = activation::sigmoid(support_logits.clone());
             let support = if detached.support { support.detach() } else { support };
-            self.rpen.forward(centred, support, steps)
+            self.extract_parts(p_s, support, steps)
         });
         Ok(SegmentationOutput { hypotheses, support_logits, segments })
+    }
+
+    /// `steps` RPEN steps on the segmentation subset's points (centred) and support
+    /// probabilities.
+    ///
+    /// # Shapes
+    /// `p_s: [batch, s, 3]`, `support: [batch, s, s]`
+    pub(crate) fn extract_parts(
+        &self,
+        p_s: Tensor<3>,
+        support: Tensor<3>,
+        steps: usize,
+    ) -> Segments {
+        let centred = p_s.clone() - p_s.mean_dim(1);
+        self.rpen.forward(centred, support, steps)
     }
 
     /// Points of the correspondence subsets.

@@ -196,9 +196,7 @@ impl PartInductionNet {
             Some(values) => {
                 let device = self.device();
                 let support = Tensor::<1>::from_floats(values, &device).reshape([1, s, s]); // [1, s, s]
-                let p_s = p.slice([0..1, 0..s]);
-                let centred = p_s.clone() - p_s.mean_dim(1);
-                self.rpen.forward(centred, support, steps)
+                self.extract_parts(p.slice([0..1, 0..s]), support, steps)
             }
         };
         let go_on = floats(segments.continuation);
