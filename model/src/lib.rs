@@ -13,10 +13,13 @@
 //!   validation set, the training config ([`train::config`]), checkpoints, the log, the
 //!   loss plot and the mean of several checkpoints' weights ([`train::average`]).
 //! - [`inference`] (4.4): the iterative procedure, the rotation search over 48 initial
-//!   orientations, hard labels by graph cut ([`inference::labels`]), and
+//!   orientations, the release's per-segment sub-problems ([`inference::subproblems`]), hard labels by graph cut ([`inference::labels`]), and
 //!   [`inference::method`], the network as the evaluator's method and segmenter.
 //! - [`diagnose`]: where the network loses accuracy, by oracle substitution stage by
 //!   stage (`model diagnose`).
+//! - [`procedures`]: the iterative procedure's variants (the paper's, the authors'
+//!   release's global alignments, per-segment sub-problems and full-Q matching) scored
+//!   side by side (`model procedures`).
 //! - [`io`]: a user's PLY and OBJ files, the animated glTF, and what `model infer` and
 //!   `model animate` do ([`io::commands`]).
 //!
@@ -39,4 +42,5 @@ pub mod diagnose;
 pub mod inference;
 pub mod io;
 pub mod network;
+pub mod procedures;
 pub mod train;

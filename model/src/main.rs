@@ -13,6 +13,7 @@ use model::io::animation::{write_animation, AnimationParams};
 use model::io::commands::{
     describe, input_from_files, load_network_folder, pair_from_dataset, write_segment_plys,
 };
+use model::procedures::{self, release_variants, score_procedure, Variant};
 use model::train::average::average_weights;
 use model::train::checkpoint::{load_weights, save_weights, CheckpointDir};
 use model::train::config::TrainConfig;
@@ -114,6 +115,35 @@ enum Command {
         #[arg(long, default_value = "diagnose.csv")]
         out: PathBuf,
     },
+    /// Score the iterative procedure's variants side by side on the same pairs: the
+    /// paper's (the `net-iter` row), the authors' release's two global alignments,
+    /// per-segment sub-problems and full-Q matching each alone, and all three; each with
+    /// its paired-bootstrap 95% interval against the paper's, on all pairs and per kind.
+    /// Prints the table and writes it as CSV.
+    Procedures {
+        /// Weights folder (config.toml and model.bpk).
+        #[arg(long, default_value = "model/weights/cpu")]
+        weights: PathBuf,
+        /// A dataset folder (datasets/<name>) to score on, repeatable [default: the
+        /// validation pairs of the weights' config, a quarter of them SF2P and a quarter
+        /// SP2P when the config trains on scans].
+        #[arg(long)]
+        dataset: Vec<PathBuf>,
+        /// Validation pairs, or the first N of each dataset [default: 240; every pair
+        /// of a dataset].
+        #[arg(long)]
+        pairs: Option<u32>,
+        /// Only these variants (comma-separated: paper, +align, +sub, +full, release); the
+        /// first is the one the others are compared with.
+        #[arg(long, value_delimiter = ',')]
+        variants: Vec<String>,
+        /// Bootstrap resamples.
+        #[arg(long, default_value_t = 2000)]
+        resamples: usize,
+        /// Where to write the table as CSV (replaced whole).
+        #[arg(long, default_value = "procedures.csv")]
+        out: PathBuf,
+    },
     /// Average several weights files of one network parameter by parameter (a "model soup":
     /// checkpoints fine-tuned from the same weights), into a new weights file.
     Average {
@@ -209,6 +239,93 @@ impl RunArgs {
         }
         Ok(inference.prediction())
     }
+}
+
+/// `model procedures`: the variants on the pairs, the table printed and written to `out`.
+fn run_procedures(
+    weights: &std::path::Path,
+    datasets: &[PathBuf],
+    count: Option<u32>,
+    names: &[String],
+    resamples: usize,
+    out: &std::path::Path,
+) -> Result<()> {
+    let all = release_variants();
+    let variants: Vec<Variant> = if names.is_empty() {
+        all
+    } else {
+        names
+            .iter()
+            .map(|n| {
+                all.iter().find(|v| v.name == n).cloned().with_context(|| {
+                    let known: Vec<&str> = all.iter().map(|v| v.name).collect();
+                    format!("--variants: no variant {n:?} (known: {})", known.join(", "))
+                })
+            })
+            .collect::<Result<_>>()?
+    };
+    let config_path = weights.join("config.toml");
+    let config = TrainConfig::load(&config_path.to_string_lossy())?;
+    let net = load_network_folder(weights)
+        .with_context(|| format!("loading the weights folder {}", weights.display()))?;
+    let pairs = if datasets.is_empty() {
+        validation_pairs(config.points, count.unwrap_or(240), config.scanned_per_pair > 0)
+            .context("generating the validation pairs")?
+    } else {
+        let mut pairs = Vec::new();
+        for dir in datasets {
+            pairs.extend(read_dataset(dir, count)?);
+        }
+        pairs
+    };
+    let mut scored = Vec::new();
+    for variant in &variants {
+        let spinner = ProgressBar::new_spinner().with_message(format!(
+            "{} on {} pairs",
+            variant.name,
+            pairs.len()
+        ));
+        spinner.enable_steady_tick(std::time::Duration::from_millis(120));
+        let s = score_procedure(&net, &pairs, variant)
+            .with_context(|| format!("running the {} procedure", variant.name))?;
+        spinner.finish_and_clear();
+        tracing::info!("{}: {:.1} s", variant.name, s.seconds);
+        scored.push(s);
+    }
+    let lines = procedures::table(&pairs, &scored, resamples, 20_181_201)
+        .context("comparing the variants")?;
+    println!("{} pairs, weights {}", pairs.len(), weights.display());
+    println!(
+        "{:<8} {:<5} {:>5} {:>7} {:>7} {:>7} {:>6}  {:<26} {:<26}",
+        "variant", "group", "pairs", "EPE", "RI", "IoU", "passes", "ΔEPE [95%]", "ΔIoU [95%]"
+    );
+    let d = |x: Option<model::train::validation::Difference>| {
+        x.map_or(String::new(), |d| format!("{:+.4} [{:+.4},{:+.4}]", d.value, d.low, d.high))
+    };
+    for l in &lines {
+        println!(
+            "{:<8} {:<5} {:>5} {:>7.4} {:>7.4} {:>7.4} {:>6.2}  {:<26} {:<26}",
+            l.variant,
+            l.group,
+            l.pairs,
+            l.scores.epe,
+            l.scores.rand_index,
+            l.scores.iou,
+            l.passes,
+            d(l.against_first.map(|c| c.epe)),
+            d(l.against_first.map(|c| c.iou)),
+        );
+    }
+    let seconds: Vec<String> =
+        scored.iter().map(|s| format!("{} {:.1} s", s.name, s.seconds)).collect();
+    println!("time: {}", seconds.join(", "));
+    let csv = procedures::to_csv(&lines);
+    pairs::atomic::replace_file(out, |file| {
+        std::io::Write::write_all(file, csv.as_bytes()).map_err(pairs::atomic::at(out))
+    })
+    .with_context(|| format!("writing {}", out.display()))?;
+    println!("written to {}", out.display());
+    Ok(())
 }
 
 /// Where tensors live.
@@ -376,6 +493,9 @@ fn main() -> Result<()> {
                     println!("  {name:<12} {:+.4}  [{:+.4}, {:+.4}]", d.value, d.low, d.high);
                 }
             }
+        }
+        Command::Procedures { weights, dataset, pairs, variants, resamples, out } => {
+            run_procedures(&weights, &dataset, pairs, &variants, resamples, &out)?;
         }
         Command::Diagnose { config, weights, dataset, pairs, out } => {
             let config = TrainConfig::load(&config)?;

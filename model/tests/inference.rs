@@ -128,3 +128,130 @@ fn a_global_alignment_recovers_a_rigid_flow_and_runs_before_the_passes() {
     let flow = aligned.prediction().flow.expect("a flow");
     assert!(flow.iter().all(|f| f.iter().all(|v| v.is_finite())));
 }
+
+#[test]
+fn sub_problems_move_each_segment_by_its_motion_and_keep_the_first_pass() {
+    use model::inference::subproblems::{attention_masks, Geodesic};
+    use pairs::math::Vector3;
+    let (net, pair) = net_and_pair();
+    let (input, truth) = (pair.input(), pair.truth());
+    // The untrained network predicts no flow, so with the true segments and motions every
+    // sub-pair's prediction is its segment's motion: a point that only its own segment's
+    // mask holds gets the true flow, and every point some segment's motion.
+    let graphs = (Geodesic::new(&input.p.points), Geodesic::new(&input.q.points));
+    let labels_p: Vec<u32> = truth.part_p.iter().map(|&l| u32::from(l)).collect();
+    let labels_q: Vec<u32> = truth.part_q.iter().map(|&l| u32::from(l)).collect();
+    let eps = 0.05;
+    let zero = vec![Vector3::zeros(); input.p.len()];
+    let sub = net
+        .sub_problem_flow(
+            input,
+            &input.p.points,
+            (&graphs.0, &graphs.1),
+            (&labels_p, &labels_q),
+            &truth.motions,
+            &zero,
+            eps,
+        )
+        .expect("runs");
+    let masks =
+        attention_masks(&graphs.0, &graphs.1, &labels_p, &labels_q, truth.motions.len(), eps);
+    let mut alone = 0;
+    for (i, (x, f)) in input.p.points.iter().zip(&sub.flow).enumerate() {
+        let holders: Vec<usize> = masks
+            .iter()
+            .enumerate()
+            .filter(|(_, m)| m.as_ref().is_some_and(|m| m.p.contains(&i)))
+            .map(|(s, _)| s)
+            .collect();
+        assert!(holders.contains(&(labels_p[i] as usize)), "point {i} is in its segment's mask");
+        if holders.len() == 1 {
+            alone += 1;
+            assert!((f - truth.flow[i]).norm() < 1e-4, "point {i}: {f} vs {}", truth.flow[i]);
+        }
+        assert!(
+            truth.motions.iter().any(|m| (x + f - m.apply(x)).norm() < 1e-4),
+            "point {i} moves by a segment's motion"
+        );
+    }
+    assert!(alone > input.p.len() / 2, "most points are in one mask only: {alone}");
+
+    // In the procedure: the first pass is the plain one; deterministic; complete records.
+    let params =
+        InferenceParams { sub_problems: true, max_iterations: 3, ..InferenceParams::iterative() };
+    let inference = net.infer(input, &params).expect("runs");
+    let plain = net.infer(input, &InferenceParams::single_pass()).expect("runs");
+    assert_eq!(inference.iterations[0], plain.iterations[0]);
+    assert_eq!(inference, net.infer(input, &params).expect("runs again"));
+    for it in &inference.iterations {
+        let flow = it.prediction.flow.as_ref().expect("a flow");
+        assert_eq!(flow.len(), input.p.len());
+        assert!(flow.iter().all(|f| f.iter().all(|v| v.is_finite())));
+        assert_eq!(it.prediction.segments_q.len(), input.q.len());
+    }
+}
+
+#[test]
+fn full_matching_ends_on_q_for_full_pairs_only() {
+    let (net, pair) = net_and_pair();
+    let input = pair.input();
+    assert_eq!(input.kind, pairs::PairKind::Sf2f);
+    let params =
+        InferenceParams { full_matching: true, max_iterations: 2, ..InferenceParams::iterative() };
+    let matched = net.infer(input, &params).expect("runs").prediction();
+    let flow = matched.flow.as_ref().expect("a flow");
+    for (x, f) in input.p.points.iter().zip(flow) {
+        let d = input.q.points.iter().map(|y| (x + f - y).norm()).fold(f32::INFINITY, f32::min);
+        assert!(d < 1e-5, "P + flow lies on a point of Q: {d}");
+    }
+    let k = matched.motions.len();
+    assert!(matched.segments_p.iter().chain(&matched.segments_q).all(|&l| (l as usize) < k));
+    // A scanned Q is left alone.
+    let mut scanned = input.clone();
+    scanned.kind = pairs::PairKind::Sf2p;
+    let plain = InferenceParams { max_iterations: 2, ..InferenceParams::iterative() };
+    assert_eq!(
+        net.infer(&scanned, &params).expect("runs"),
+        net.infer(&scanned, &plain).expect("runs")
+    );
+}
+
+#[test]
+fn procedures_are_scored_side_by_side_against_the_first() {
+    use model::procedures::{release_variants, score_procedure, table, to_csv};
+    let (net, pair) = net_and_pair();
+    let mut scanned = pair.clone();
+    let variants = release_variants();
+    assert_eq!(
+        variants.iter().map(|v| v.name).collect::<Vec<_>>(),
+        ["paper", "+align", "+sub", "+full", "release"]
+    );
+    assert_eq!(variants[0].params, InferenceParams::iterative());
+    let paper = variants[0].clone();
+    let full = variants[3].clone();
+    // A second pair that differs only in its kind: full matching leaves it alone.
+    scanned = {
+        let mut input = scanned.input().clone();
+        input.kind = pairs::PairKind::Sf2p;
+        Pair::new(input, pair.truth().clone(), pair.provenance().clone()).expect("a valid pair")
+    };
+    let pairs = vec![pair, scanned];
+    let a = score_procedure(&net, &pairs, &paper).expect("scores");
+    let b = score_procedure(&net, &pairs, &full).expect("scores");
+    let key = |s: &model::train::validation::PairScores| (s.epe, s.rand_index, s.iou_sum, s.parts);
+    assert_eq!(key(&a.pairs[1]), key(&b.pairs[1]), "a scanned Q is not matched");
+    assert!(a.pairs[0].support_iou.is_nan(), "the support IoU is not scored");
+    assert_eq!(a.passes.len(), 2);
+    let lines = table(&pairs, &[a.clone(), b], 50, 1).expect("compares");
+    // all, SF2F, SF2P: two variants each.
+    assert_eq!(lines.len(), 6);
+    assert!(lines[0].against_first.is_none());
+    let sf2p = lines.iter().find(|l| l.group == "SF2P" && l.variant == "+full").unwrap();
+    let d = sf2p.against_first.expect("a comparison").iou;
+    assert_eq!((d.value, d.low, d.high), (0.0, 0.0, 0.0));
+    let all = lines.iter().find(|l| l.group == "all" && l.variant == "paper").unwrap();
+    assert_eq!(all.scores.epe, (a.pairs[0].epe + a.pairs[1].epe) / 2.0);
+    let csv = to_csv(&lines);
+    assert_eq!(csv.lines().count(), 7);
+    assert!(csv.lines().nth(1).unwrap().starts_with("paper,all,2,"));
+}

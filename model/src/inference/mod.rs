@@ -10,11 +10,13 @@
 pub mod labels;
 pub mod method;
 pub mod rotation_search;
+pub mod subproblems;
 
 use pairs::math::{Matrix3, Point3, Real, Vector3};
-use pairs::{PairInput, Prediction};
+use pairs::{PairInput, PairKind, Prediction};
 
-use crate::inference::labels::{segment_pair, HardLabelParams};
+use crate::inference::labels::{segment_pair, HardLabelParams, HardSegmentation};
+use crate::inference::subproblems::{expand_eps, Geodesic};
 use crate::network::sampling::SamplingError;
 use crate::network::PartInductionNet;
 
@@ -49,6 +51,16 @@ pub struct InferenceParams {
     /// aligned with Q as a whole. Not yet measured against the default on the validation
     /// sets.
     pub global_alignments: usize,
+    /// Refine by per-segment sub-problems (the authors' release; off by default, the
+    /// paper's procedure): every pass after the first runs the correspondence and flow
+    /// modules on one sub-pair per segment of the previous pass, cut within a geodesic
+    /// radius of the segment (0.2, then 0.15, then 0.1), instead of on the whole deformed
+    /// pair ([`subproblems`]). Not calibrated: the null flow is the whole pair's.
+    pub sub_problems: bool,
+    /// End on Q (the release's `ISFULL_MATCHING`, for full Q only): the last pass's flow
+    /// is moved to the nearest point of Q and segmented again. Applies to SF2F pairs;
+    /// a scanned Q is left alone (its points do not cover P's moved surface).
+    pub full_matching: bool,
 }
 
 impl Default for InferenceParams {
@@ -69,6 +81,8 @@ impl InferenceParams {
             rotation_search: false,
             calibrate: true,
             global_alignments: 0,
+            sub_problems: false,
+            full_matching: false,
         }
     }
 
@@ -132,7 +146,45 @@ fn nearest(cloud: &[Point3], x: &Point3) -> usize {
         .unwrap_or(0)
 }
 
+/// A pass's prediction in P's original frame from its flow and segments of the rotated P
+/// (`start = rotation · original`): the flow of x is R x + f - x, each motion M ∘ R.
+fn in_original_frame(
+    original: &[Point3],
+    start: &[Point3],
+    rotation: Matrix3,
+    flow: &[Vector3],
+    seg: &HardSegmentation,
+    mask: Vec<f32>,
+) -> Prediction {
+    let flow = original.iter().zip(start).zip(flow).map(|((x, r), f)| r + f - x).collect();
+    let motions = seg
+        .motions
+        .iter()
+        .map(|m| pairs::transform::Similarity { rotation: m.rotation * rotation, ..*m })
+        .collect();
+    Prediction {
+        flow: Some(flow),
+        segments_p: seg.labels_p.clone(),
+        segments_q: seg.labels_q.clone(),
+        motions,
+        corr_mask: Some(mask),
+        segment_probs: Some(seg.probs.clone()),
+        joints: None,
+    }
+}
+
 impl PartInductionNet {
+    /// Soft segments of the rotated P under `flow`, then hard labels and motions.
+    fn segment_rotated(
+        &self,
+        rotated: &PairInput,
+        flow: &[Vector3],
+        params: &HardLabelParams,
+    ) -> Result<HardSegmentation, SamplingError> {
+        let probs = self.soft_segments(rotated, flow)?;
+        Ok(segment_pair(&rotated.p.points, &rotated.q.points, &probs, flow, params))
+    }
+
     /// The network's flow from Q to itself, on Q's points (ideally zero).
     pub fn null_flow(&self, input: &PairInput) -> Result<Vec<Vector3>, SamplingError> {
         let mut same = input.clone();
@@ -171,19 +223,41 @@ impl PartInductionNet {
             let (flow, _) = calibrated(&deformed)?;
             deformed = with_p(&rotated, align_globally(&deformed.p.points, &flow));
         }
-        for _ in 0..params.max_iterations.max(1) {
-            let (residual, mask) = calibrated(&deformed)?;
-            // The refined flow of the rotated P: (P' - P) + f'.
-            let flow: Vec<Vector3> = deformed
-                .p
-                .points
-                .iter()
-                .zip(start)
-                .zip(&residual)
-                .map(|((moved, x), f)| moved - x + f)
-                .collect();
-            let probs = self.soft_segments(&rotated, &flow)?;
-            let seg = segment_pair(start, &input.q.points, &probs, &flow, &params.labels);
+        let graphs =
+            params.sub_problems.then(|| (Geodesic::new(start), Geodesic::new(&input.q.points)));
+        // The previous pass's segments and flow (of the rotated P), for the sub-problems.
+        let mut previous: Option<(HardSegmentation, Vec<Vector3>)> = None;
+        for pass in 0..params.max_iterations.max(1) {
+            let (flow, mask, residual_norm) = match (&graphs, &previous) {
+                (Some((p_graph, q_graph)), Some((seg, flow))) => {
+                    let sub = self.sub_problem_flow(
+                        &rotated,
+                        start,
+                        (p_graph, q_graph),
+                        (&seg.labels_p, &seg.labels_q),
+                        &seg.motions,
+                        flow,
+                        expand_eps(pass),
+                    )?;
+                    (sub.flow, sub.mask, sub.residual)
+                }
+                _ => {
+                    let (residual, mask) = calibrated(&deformed)?;
+                    // The refined flow of the rotated P: (P' - P) + f'.
+                    let flow: Vec<Vector3> = deformed
+                        .p
+                        .points
+                        .iter()
+                        .zip(start)
+                        .zip(&residual)
+                        .map(|((moved, x), f)| moved - x + f)
+                        .collect();
+                    let norm = residual.iter().map(|r| r.norm()).sum::<Real>()
+                        / residual.len().max(1) as Real;
+                    (flow, mask, norm)
+                }
+            };
+            let seg = self.segment_rotated(&rotated, &flow, &params.labels)?;
             deformed = with_p(
                 &rotated,
                 start
@@ -192,42 +266,33 @@ impl PartInductionNet {
                     .map(|(x, &l)| seg.motions[l as usize].apply(x))
                     .collect(),
             );
-            // Back to P's original frame: the flow of x is R x + f - x, each motion M ∘ R.
-            let flow_original: Vec<Vector3> =
-                original.iter().zip(start).zip(&flow).map(|((x, r), f)| r + f - x).collect();
+            let prediction = in_original_frame(original, start, rotation, &flow, &seg, mask);
             let change = iterations.last().and_then(|last| last.prediction.flow.as_ref()).map_or(
                 Real::INFINITY,
                 |previous| {
-                    let total: Real =
-                        previous.iter().zip(&flow_original).map(|(a, b)| (a - b).norm()).sum();
-                    total / flow_original.len().max(1) as Real
+                    let now = prediction.flow.as_deref().unwrap_or_default();
+                    let total: Real = previous.iter().zip(now).map(|(a, b)| (a - b).norm()).sum();
+                    total / now.len().max(1) as Real
                 },
             );
-            let motions = seg
-                .motions
-                .iter()
-                .map(|m| pairs::transform::Similarity { rotation: m.rotation * rotation, ..*m })
-                .collect();
-            let residual_norm =
-                residual.iter().map(|r| r.norm()).sum::<Real>() / residual.len().max(1) as Real;
             let levelled = iterations.last().is_some_and(|last| {
                 residual_norm > last.residual * (1.0 - params.min_residual_decrease)
             });
-            iterations.push(Iteration {
-                prediction: Prediction {
-                    flow: Some(flow_original),
-                    segments_p: seg.labels_p,
-                    segments_q: seg.labels_q,
-                    motions,
-                    corr_mask: Some(mask),
-                    segment_probs: Some(seg.probs),
-                    joints: None,
-                },
-                change,
-                residual: residual_norm,
-            });
+            iterations.push(Iteration { prediction, change, residual: residual_norm });
+            previous = Some((seg, flow));
             if change < params.tolerance || levelled {
                 break;
+            }
+        }
+        if params.full_matching && input.kind == PairKind::Sf2f {
+            if let (Some((_, flow)), Some(last)) = (previous, iterations.last_mut()) {
+                let q = &input.q.points;
+                let snapped: Vec<Vector3> =
+                    start.iter().zip(&flow).map(|(x, f)| q[nearest(q, &(x + f))] - x).collect();
+                let seg = self.segment_rotated(&rotated, &snapped, &params.labels)?;
+                let mask = last.prediction.corr_mask.take().unwrap_or_default();
+                last.prediction =
+                    in_original_frame(original, start, rotation, &snapped, &seg, mask);
             }
         }
         Ok(Inference { rotation, iterations })

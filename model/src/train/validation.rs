@@ -91,6 +91,9 @@ pub enum ScoreError {
         #[source]
         source: pairs::metrics::MetricError,
     },
+    /// The inference procedure failed on a pair (the error names the pair).
+    #[error(transparent)]
+    Procedure(#[from] pairs::MethodError),
 }
 
 /// One pair's scores, the terms that [`Scores`] averages.
