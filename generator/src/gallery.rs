@@ -1,5 +1,5 @@
 //! Pictures of the category library: each category closed and opened, drawn as shaded
-//! point splats coloured by link, for the README and for checking a new category by eye.
+//! point splats coloured by link, for docs/DATASETS.md and for checking a new category by eye.
 
 use std::path::{Path, PathBuf};
 

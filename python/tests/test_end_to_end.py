@@ -1,5 +1,5 @@
-"""A prediction file written from Python, scored by the Rust evaluator; and the README's
-example method."""
+"""A prediction file written from Python, scored by the Rust evaluator; and the example
+method of docs/SCORING.md and python/README.md."""
 
 from __future__ import annotations
 
