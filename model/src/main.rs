@@ -207,6 +207,10 @@ struct RunArgs {
     /// does 2).
     #[arg(long, default_value_t = 0)]
     global_alignments: usize,
+    /// Refine by per-segment sub-problems within a geodesic radius of each segment, as the
+    /// authors' release does, instead of on the whole deformed pair.
+    #[arg(long)]
+    sub_problems: bool,
     /// Points per cloud (files with more are reduced by farthest-point sampling).
     #[arg(long, default_value_t = 512)]
     points: usize,
@@ -218,6 +222,7 @@ impl RunArgs {
             max_iterations: self.iterations.max(1),
             rotation_search: self.rotation_search,
             global_alignments: self.global_alignments,
+            sub_problems: self.sub_problems,
             ..InferenceParams::iterative()
         }
     }
