@@ -6,7 +6,6 @@
 
 use std::time::Instant;
 
-use pairs::metrics::{epe, matched_iou, rand_index};
 use pairs::{Pair, PairKind};
 use rayon::prelude::*;
 
@@ -71,20 +70,8 @@ pub fn score_procedure(
     let scored: Vec<(PairScores, usize)> = pairs
         .par_iter()
         .map(|pair| {
-            let id = || pair.id().to_string();
             let inference = method.infer(pair.input())?;
-            let prediction = inference.prediction();
-            let truth = pair.truth();
-            let metric = |source| ScoreError::Metric { pair: id(), source };
-            let flow = prediction.flow.as_deref().unwrap_or_default();
-            let matching = matched_iou(&prediction.segments_p, &truth.part_p).map_err(metric)?;
-            let scores = PairScores {
-                epe: epe(flow, &truth.flow).map_err(metric)?,
-                rand_index: rand_index(&prediction.segments_p, &truth.part_p).map_err(metric)?,
-                iou_sum: matching.iou.iter().sum::<f64>(),
-                parts: matching.iou.len(),
-                support_iou: f64::NAN,
-            };
+            let scores = PairScores::of(pair, &inference.prediction(), f64::NAN)?;
             Ok((scores, inference.iterations.len()))
         })
         .collect::<Result<_, ScoreError>>()?;

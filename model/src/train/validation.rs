@@ -10,7 +10,7 @@ use generator::config::GeneratorConfig;
 use generator::generate::{object_pairs_with, GenerateError, Variant};
 use pairs::metrics::{epe, matched_iou, rand_index};
 use pairs::PairKind;
-use pairs::{Pair, PartId};
+use pairs::{Pair, PartId, Prediction};
 
 use crate::network::sampling::SamplingError;
 use crate::network::PartInductionNet;
@@ -155,22 +155,31 @@ pub fn score_pairs(net: &PartInductionNet, pairs: &[Pair]) -> Result<Vec<PairSco
                 .predict(pair.input())
                 .map_err(|source| ScoreError::Predict { pair: id(), source })?;
             let truth = pair.truth();
-            let metric = |source| ScoreError::Metric { pair: id(), source };
-            let flow = prediction.flow.as_deref().unwrap_or_default();
-            let matching = matched_iou(&prediction.segments_p, &truth.part_p).map_err(metric)?;
             let (subset, probs) = net
                 .supports(pair.input(), &truth.flow)
                 .map_err(|source| ScoreError::Predict { pair: id(), source })?;
             let parts_s: Vec<PartId> = subset.iter().map(|&i| truth.part_p[i]).collect();
-            Ok(PairScores {
-                epe: epe(flow, &truth.flow).map_err(metric)?,
-                rand_index: rand_index(&prediction.segments_p, &truth.part_p).map_err(metric)?,
-                iou_sum: matching.iou.iter().sum::<f64>(),
-                parts: matching.iou.len(),
-                support_iou: support_iou(&probs, &parts_s),
-            })
+            PairScores::of(pair, &prediction, support_iou(&probs, &parts_s))
         })
         .collect()
+}
+
+impl PairScores {
+    /// The scores of `prediction` (its flow and P's labels) on `pair`, with a support IoU
+    /// scored elsewhere (NaN where none is).
+    pub fn of(pair: &Pair, prediction: &Prediction, support_iou: f64) -> Result<Self, ScoreError> {
+        let truth = pair.truth();
+        let metric = |source| ScoreError::Metric { pair: pair.id().to_string(), source };
+        let flow = prediction.flow.as_deref().unwrap_or_default();
+        let matching = matched_iou(&prediction.segments_p, &truth.part_p).map_err(metric)?;
+        Ok(Self {
+            epe: epe(flow, &truth.flow).map_err(metric)?,
+            rand_index: rand_index(&prediction.segments_p, &truth.part_p).map_err(metric)?,
+            iou_sum: matching.iou.iter().sum::<f64>(),
+            parts: matching.iou.len(),
+            support_iou,
+        })
+    }
 }
 
 /// A difference of one score between two networks on the same pairs, with a 95% interval.
