@@ -211,6 +211,10 @@ struct RunArgs {
     /// authors' release does, instead of on the whole deformed pair.
     #[arg(long)]
     sub_problems: bool,
+    /// End the last pass on Q's points (the release's full matching; for a full Q only:
+    /// both files are taken as full shapes).
+    #[arg(long)]
+    full_matching: bool,
     /// Points per cloud (files with more are reduced by farthest-point sampling).
     #[arg(long, default_value_t = 512)]
     points: usize,
@@ -223,6 +227,7 @@ impl RunArgs {
             rotation_search: self.rotation_search,
             global_alignments: self.global_alignments,
             sub_problems: self.sub_problems,
+            full_matching: self.full_matching,
             ..InferenceParams::iterative()
         }
     }

@@ -151,6 +151,7 @@ fn sub_problems_move_each_segment_by_its_motion_and_keep_the_first_pass() {
             (&labels_p, &labels_q),
             &truth.motions,
             &zero,
+            None,
             eps,
         )
         .expect("runs");
@@ -183,6 +184,11 @@ fn sub_problems_move_each_segment_by_its_motion_and_keep_the_first_pass() {
     let plain = net.infer(input, &InferenceParams::single_pass()).expect("runs");
     assert_eq!(inference.iterations[0], plain.iterations[0]);
     assert_eq!(inference, net.infer(input, &params).expect("runs again"));
+    // Every pass runs with sub-problems; the plain procedure stops once the flow is still
+    // (the untrained network's is zero from the first pass).
+    assert_eq!(inference.iterations.len(), 3);
+    let plain = InferenceParams { max_iterations: 3, ..InferenceParams::iterative() };
+    assert_eq!(net.infer(input, &plain).expect("runs").iterations.len(), 2);
     for it in &inference.iterations {
         let flow = it.prediction.flow.as_ref().expect("a flow");
         assert_eq!(flow.len(), input.p.len());
@@ -253,5 +259,6 @@ fn procedures_are_scored_side_by_side_against_the_first() {
     assert_eq!(all.scores.epe, (a.pairs[0].epe + a.pairs[1].epe) / 2.0);
     let csv = to_csv(&lines);
     assert_eq!(csv.lines().count(), 7);
+    assert!(csv.lines().all(|l| l.split(',').count() == 16), "every row has the header's fields");
     assert!(csv.lines().nth(1).unwrap().starts_with("paper,all,2,"));
 }

@@ -55,7 +55,8 @@ pub struct InferenceParams {
     /// paper's procedure): every pass after the first runs the correspondence and flow
     /// modules on one sub-pair per segment of the previous pass, cut within a geodesic
     /// radius of the segment (0.2, then 0.15, then 0.1), instead of on the whole deformed
-    /// pair ([`subproblems`]). Not calibrated: the null flow is the whole pair's.
+    /// pair ([`subproblems`]), each sub-pair's residual calibrated like the whole pair's.
+    /// Every pass runs (`max_iterations`: 1 + 9 in the release), without the stop rules.
     pub sub_problems: bool,
     /// End on Q (the release's `ISFULL_MATCHING`, for full Q only): the last pass's flow
     /// is moved to the nearest point of Q and segmented again. Applies to SF2F pairs;
@@ -100,7 +101,8 @@ pub struct Iteration {
     /// Mean norm of the flow's change from the previous pass (infinite for the first).
     pub change: Real,
     /// Mean norm of the residual flow the network predicted in this pass (after the
-    /// calibration): how far P' still is from Q in the network's view.
+    /// calibration): how far P' still is from Q in the network's view (with sub-problems,
+    /// of each point's chosen sub-pair residual).
     pub residual: Real,
 }
 
@@ -140,7 +142,7 @@ pub fn align_globally(points: &[Point3], flow: &[Vector3]) -> Vec<Point3> {
 }
 
 /// The index of the point of `cloud` nearest `x` (0 for an empty cloud).
-fn nearest(cloud: &[Point3], x: &Point3) -> usize {
+pub(crate) fn nearest(cloud: &[Point3], x: &Point3) -> usize {
     (0..cloud.len())
         .min_by(|&a, &b| (cloud[a] - x).norm_squared().total_cmp(&(cloud[b] - x).norm_squared()))
         .unwrap_or(0)
@@ -237,6 +239,7 @@ impl PartInductionNet {
                         (&seg.labels_p, &seg.labels_q),
                         &seg.motions,
                         flow,
+                        null.as_deref(),
                         expand_eps(pass),
                     )?;
                     (sub.flow, sub.mask, sub.residual)
@@ -280,7 +283,9 @@ impl PartInductionNet {
             });
             iterations.push(Iteration { prediction, change, residual: residual_norm });
             previous = Some((seg, flow));
-            if change < params.tolerance || levelled {
+            // With sub-problems every pass runs, as in the release (its radii shrink pass by
+            // pass, and a residual of the smallest sub-pair is not the whole pair's).
+            if !params.sub_problems && (change < params.tolerance || levelled) {
                 break;
             }
         }

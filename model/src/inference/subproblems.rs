@@ -154,9 +154,12 @@ pub struct SubProblemFlow {
 
 impl PartInductionNet {
     /// One refinement pass by per-segment sub-problems (module docs): `start` is P (in the
-    /// frame the flow starts from), `labels_p`/`labels_q` and `motions` the previous pass's
-    /// segments, `eps` the attention radius. A point no mask holds (none does, since every
-    /// point is in its own segment's mask) keeps `previous`.
+    /// frame the flow starts from), `labels` (on P and Q) and `motions` the previous pass's
+    /// segments, `eps` the attention radius. With `null` (the network's flow from Q to
+    /// itself, on Q's points), every sub-pair's residual is calibrated as the whole pair's
+    /// is ([`InferenceParams::calibrate`](super::InferenceParams::calibrate)): minus the
+    /// null flow at the moved point's nearest point of Q. A point no mask holds (none does,
+    /// since every point is in its own segment's mask) keeps `previous`.
     #[allow(clippy::too_many_arguments)]
     pub fn sub_problem_flow(
         &self,
@@ -166,13 +169,12 @@ impl PartInductionNet {
         labels: (&[u32], &[u32]),
         motions: &[Similarity],
         previous: &[Vector3],
+        null: Option<&[Vector3]>,
         eps: Real,
     ) -> Result<SubProblemFlow, SamplingError> {
         let n = start.len();
         let masks = attention_masks(graphs.0, graphs.1, labels.0, labels.1, motions.len(), eps);
-        let mut flow = previous.to_vec();
-        let mut mask = vec![1.0f32; n];
-        let mut best = vec![Real::INFINITY; n];
+        let mut pieces = Vec::with_capacity(masks.len());
         for (s, attention) in masks.iter().enumerate() {
             let Some(attention) = attention else { continue };
             let segment: Vec<usize> = (0..n).filter(|&i| labels.0[i] as usize == s).collect();
@@ -185,20 +187,59 @@ impl PartInductionNet {
                 .map(|x| motions[s].apply(x))
                 .collect();
             sub.q.points = padded(&input.q.points, &attention.q, pad_q, input.q.len());
-            let (residual, sub_mask) = self.flow_pass(&sub)?;
-            for (j, &i) in attention.p.iter().enumerate() {
-                let norm = residual[j].norm();
-                if norm < best[i] {
-                    best[i] = norm;
-                    flow[i] = sub.p.points[j] + residual[j] - start[i];
-                    mask[i] = sub_mask[j];
+            let (mut residual, mask) = self.flow_pass(&sub)?;
+            if let Some(null) = null {
+                for (r, x) in residual.iter_mut().zip(&sub.p.points) {
+                    *r -= null[super::nearest(&input.q.points, x)];
                 }
             }
+            let k = attention.p.len();
+            pieces.push(Piece {
+                indices: attention.p.clone(),
+                moved: sub.p.points[..k].to_vec(),
+                residual: residual[..k].to_vec(),
+                mask: mask[..k].to_vec(),
+            });
         }
-        let held: Vec<Real> = best.iter().copied().filter(|b| b.is_finite()).collect();
-        let residual = held.iter().sum::<Real>() / held.len().max(1) as Real;
-        Ok(SubProblemFlow { flow, mask, residual })
+        Ok(merge_pieces(start, previous, &pieces))
     }
+}
+
+/// One sub-pair's prediction on the points of P its mask holds.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Piece {
+    /// Indices of the points of P (the attention mask).
+    pub indices: Vec<usize>,
+    /// Those points moved by the segment's motion.
+    pub moved: Vec<Point3>,
+    /// The residual flow the network predicted for each (calibrated where asked).
+    pub residual: Vec<Vector3>,
+    /// The correspondence mask of each.
+    pub mask: Vec<f32>,
+}
+
+/// The release's merge (`motion_modes_aggreg_watt`): every point of P takes the prediction
+/// (moved point plus residual) of the piece, among those holding it, with the smallest
+/// residual; ties go to the earlier piece; a point no piece holds keeps `previous` (and a
+/// mask of 1). The residual reported is the mean of the chosen residuals' norms.
+pub fn merge_pieces(start: &[Point3], previous: &[Vector3], pieces: &[Piece]) -> SubProblemFlow {
+    let n = start.len();
+    let mut flow = previous.to_vec();
+    let mut mask = vec![1.0f32; n];
+    let mut best = vec![Real::INFINITY; n];
+    for piece in pieces {
+        for (j, &i) in piece.indices.iter().enumerate() {
+            let norm = piece.residual[j].norm();
+            if norm < best[i] {
+                best[i] = norm;
+                flow[i] = piece.moved[j] + piece.residual[j] - start[i];
+                mask[i] = piece.mask[j];
+            }
+        }
+    }
+    let held: Vec<Real> = best.iter().copied().filter(|b| b.is_finite()).collect();
+    let residual = held.iter().sum::<Real>() / held.len().max(1) as Real;
+    SubProblemFlow { flow, mask, residual }
 }
 
 #[cfg(test)]
@@ -254,6 +295,35 @@ mod tests {
         let q_labels = vec![0u32; 20];
         let masks = attention_masks(&g, &g, &labels, &q_labels, 2, 0.25);
         assert_eq!(masks[1].as_ref().unwrap().q, (0..20).collect::<Vec<_>>());
+    }
+
+    #[test]
+    fn the_merge_takes_the_least_residual_of_the_pieces_holding_a_point() {
+        let start = line(4);
+        let previous = vec![Vector3::new(9.0, 0.0, 0.0); 4];
+        let shift = |d: Real| Vector3::new(0.0, d, 0.0);
+        // Piece A holds 0, 1, 2 moved up by 1; piece B holds 1, 2 moved up by 2.
+        let a = Piece {
+            indices: vec![0, 1, 2],
+            moved: [0, 1, 2].iter().map(|&i| start[i] + shift(1.0)).collect(),
+            residual: vec![shift(0.1), shift(0.3), shift(0.2)],
+            mask: vec![0.1, 0.2, 0.3],
+        };
+        let b = Piece {
+            indices: vec![1, 2],
+            moved: [1, 2].iter().map(|&i| start[i] + shift(2.0)).collect(),
+            residual: vec![shift(0.05), shift(-0.2)],
+            mask: vec![0.4, 0.5],
+        };
+        let merged = merge_pieces(&start, &previous, &[a, b]);
+        // 0: A only; 1: B's residual is smaller; 2: a tie, the earlier piece (A) keeps it;
+        // 3: no piece, the previous flow.
+        let expected = [shift(1.1), shift(2.05), shift(1.2), Vector3::new(9.0, 0.0, 0.0)];
+        for (got, want) in merged.flow.iter().zip(&expected) {
+            assert!((got - want).norm() < 1e-6, "{got} vs {want}");
+        }
+        assert_eq!(merged.mask, vec![0.1, 0.4, 0.3, 1.0]);
+        assert!((merged.residual - (0.1 + 0.05 + 0.2) / 3.0).abs() < 1e-6);
     }
 
     #[test]
