@@ -60,6 +60,16 @@ pub fn generate_asset_dataset(
 ) -> Result<AssetDataset, GenerateError> {
     let config = GeneratorConfig { objects: (sources.len() as u32).max(1), ..config.clone() };
     config.validate()?;
+    if config.kind.cross_instance() {
+        return Err(GenerateError::Config(crate::config::ConfigError::Invalid {
+            field: "kind",
+            reason: format!(
+                "{} pairs two instances of a procedural category; an asset is one object \
+                 (use SF2F, SF2P or SP2P with --assets)",
+                config.kind.as_str()
+            ),
+        }));
+    }
     let mut writer = DatasetWriter::create(dir, overwrite)?;
     let mut records = Vec::with_capacity(sources.len());
     let mut failures = Vec::new();

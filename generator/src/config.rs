@@ -124,7 +124,7 @@ impl GeneratorConfig {
     /// The config with every value it uses written out: the scanner's settings for the
     /// scanned kinds (a full-shape config keeps none), so manifests record all of them.
     pub fn resolved(&self) -> Self {
-        let scan = (self.kind != PairKind::Sf2f).then(|| self.scanner());
+        let scan = self.kind.scanned_q().then(|| self.scanner());
         Self { scan, ..self.clone() }
     }
 

@@ -7,11 +7,12 @@ use pairs::dataset::{DatasetOrigin, DatasetWriter, Manifest, Shard};
 use pairs::math::{Isometry3, Real};
 use pairs::scan::PairImages;
 use pairs::{DatasetError, Pair, PairError, PairKind};
+use rand::Rng as _;
 use rayon::prelude::*;
 
 use crate::categories::split_table;
 use crate::config::{ConfigError, GeneratorConfig};
-use crate::label::Parts;
+use crate::label::{same_structure, Parts};
 use crate::objects::{ArticulatedObject, ObjectError};
 use crate::protocol::{candidate_pairs, draw_state};
 use crate::sampling::SurfaceSampler;
@@ -21,13 +22,18 @@ use crate::shard::shard_objects;
 
 mod pair;
 
-use pair::{make_pair, Scene, State};
+use pair::{make_pair, Partner, Scene, State};
 
 /// Version written into every pair's provenance and the manifest.
 pub const GENERATOR_VERSION: &str = env!("CARGO_PKG_VERSION");
 
 /// Objects generated in parallel before their pairs are written: bounds memory.
 const BATCH_OBJECTS: usize = 32;
+
+/// Second instances tried per object of a cross-instance set before the object is left
+/// out: each is built from its own seed and kept when it has the same links and joints by
+/// name and gives the pairs wanted.
+pub const PARTNER_ATTEMPTS: u32 = 16;
 
 /// Why generation failed.
 #[derive(Debug, thiserror::Error)]
@@ -57,6 +63,15 @@ pub enum GenerateError {
         wanted: usize,
         /// The config's `min_part_points`.
         min: u32,
+    },
+    /// No second instance of the object's category could be matched to it part for part
+    /// (cross-instance kinds).
+    #[error("object {object} ({category}): none of {PARTNER_ATTEMPTS} other instances of its category has the same links and joints and gives the pairs wanted")]
+    NoPartner {
+        /// Object index.
+        object: u32,
+        /// Its category.
+        category: String,
     },
     /// A generated pair broke an invariant (a generator bug).
     #[error("generated an invalid pair: {0}")]
@@ -122,14 +137,33 @@ pub struct Variant {
     pub images: bool,
 }
 
-/// The pairs of object `index` in one [`Variant`].
+/// The pairs of object `index` in one [`Variant`]. A cross-instance object without a
+/// second instance to match is an error ([`GenerateError::NoPartner`]); datasets leave such
+/// objects out instead ([`dataset_object_pairs`]).
 pub fn object_pairs_with(
     config: &GeneratorConfig,
     index: u32,
     variant: Variant,
 ) -> Result<Vec<GeneratedPair>, GenerateError> {
     let object = build_object(config, index)?;
-    pairs_of_object(config, &object, index, variant)
+    if !variant.kind.cross_instance() {
+        return pairs_of_object(config, &object, index, variant);
+    }
+    cross_pairs_of_object(config, &object, index, variant)?.ok_or_else(|| {
+        GenerateError::NoPartner { object: index, category: object.category.clone() }
+    })
+}
+
+/// The pairs object `index` contributes to a dataset: `None` when it is a cross-instance
+/// object left out (no second instance of its category matched it part for part).
+pub fn dataset_object_pairs(
+    config: &GeneratorConfig,
+    index: u32,
+) -> Result<Option<Vec<GeneratedPair>>, GenerateError> {
+    match object_pairs(config, index) {
+        Err(GenerateError::NoPartner { .. }) => Ok(None),
+        other => other.map(Some),
+    }
 }
 
 /// The pairs of an already built `object` as object `index` of a dataset (user assets
@@ -140,12 +174,57 @@ pub fn pairs_of_object(
     index: u32,
     variant: Variant,
 ) -> Result<Vec<GeneratedPair>, GenerateError> {
+    pairs_with(config, object, None, index, variant)
+}
+
+/// The cross-instance pairs of `object` as object `index`: P observes it, Q the first of
+/// [`PARTNER_ATTEMPTS`] second instances (object `index` of the config under a seed drawn
+/// from [`Stream::Partner`]) that has the same links and joints by name and gives the
+/// pairs wanted; `None` when none does.
+pub fn cross_pairs_of_object(
+    config: &GeneratorConfig,
+    object: &ArticulatedObject,
+    index: u32,
+    variant: Variant,
+) -> Result<Option<Vec<GeneratedPair>>, GenerateError> {
+    for attempt in 0..PARTNER_ATTEMPTS {
+        let seed = rng_for(config.seed, u64::from(index), Stream::Partner(attempt)).random();
+        let other = build_object(&GeneratorConfig { seed, ..config.clone() }, index)?;
+        if !same_structure(object, &other) {
+            continue;
+        }
+        let sampler = SurfaceSampler::new(&other);
+        let partner = Partner { object: &other, sampler: &sampler, seed };
+        match pairs_with(config, object, Some(partner), index, variant) {
+            Err(GenerateError::TooFewPairs { .. }) => continue,
+            other => return other.map(Some),
+        }
+    }
+    Ok(None)
+}
+
+/// The pairs of `object`, with Q observing `partner` in a cross-instance set. Q's states
+/// are the partner's own (drawn from its seed's [`Stream::States`]), so that
+/// `articulation_q` indexes them as `articulation_p` indexes P's.
+fn pairs_with(
+    config: &GeneratorConfig,
+    object: &ArticulatedObject,
+    partner: Option<Partner>,
+    index: u32,
+    variant: Variant,
+) -> Result<Vec<GeneratedPair>, GenerateError> {
     let sampler = SurfaceSampler::new(object);
     let mut rng = rng_for(config.seed, u64::from(index), Stream::States);
     let states = draw_states(config, object, &mut rng);
+    let states_q = match partner {
+        Some(o) => {
+            draw_states(config, o.object, &mut rng_for(o.seed, u64::from(index), Stream::States))
+        }
+        None => states.clone(),
+    };
     let wanted = config.pairs_per_object as usize;
     let mut pairs = Vec::with_capacity(wanted);
-    let scene = Scene { config, object, sampler: &sampler, index, variant };
+    let scene = Scene { config, object, sampler: &sampler, index, variant, partner };
     for (candidate, (i, j)) in candidate_pairs(&states, &mut rng).into_iter().enumerate() {
         if pairs.len() == wanted {
             break;
@@ -153,7 +232,7 @@ pub fn pairs_of_object(
         let candidate = candidate as u32;
         let mut rng = rng_for(config.seed, u64::from(index), Stream::Pair(candidate));
         let (p, q) =
-            (State { index: i, values: &states[i] }, State { index: j, values: &states[j] });
+            (State { index: i, values: &states[i] }, State { index: j, values: &states_q[j] });
         if let Some(pair) = make_pair(&scene, (pairs.len(), candidate), p, q, &mut rng)? {
             pairs.push(pair);
         }
@@ -203,16 +282,25 @@ pub fn generate_dataset(
 ) -> Result<Manifest, GenerateError> {
     config.validate()?;
     let objects: Vec<u32> = shard_objects(config.objects, shard)?.collect();
+    let categories = config.categories()?;
     let mut writer = DatasetWriter::create(dir, overwrite)?;
+    let mut left_out = std::collections::BTreeMap::new();
     for batch in objects.chunks(BATCH_OBJECTS) {
-        let generated: Vec<Vec<GeneratedPair>> =
-            batch.par_iter().map(|&i| object_pairs(config, i)).collect::<Result<_, _>>()?;
-        for pair in generated.iter().flatten() {
-            writer.write_scanned(&pair.pair, &pair.images)?;
-            progress(writer.len());
+        let generated: Vec<Option<Vec<GeneratedPair>>> =
+            batch.par_iter().map(|&i| dataset_object_pairs(config, i)).collect::<Result<_, _>>()?;
+        for (&i, pairs) in batch.iter().zip(&generated) {
+            let Some(pairs) = pairs else {
+                let category = categories[i as usize % categories.len()].name;
+                *left_out.entry(category.to_owned()).or_insert(0) += 1;
+                continue;
+            };
+            for pair in pairs {
+                writer.write_scanned(&pair.pair, &pair.images)?;
+                progress(writer.len());
+            }
         }
     }
-    Ok(writer.finish(dataset_origin(config, shard))?)
+    Ok(writer.finish(DatasetOrigin { left_out, ..dataset_origin(config, shard) })?)
 }
 
 /// The manifest's record of what made a dataset (or one shard of it).
@@ -224,6 +312,7 @@ pub fn dataset_origin(config: &GeneratorConfig, shard: Option<Shard>) -> Dataset
         splits: split_table(),
         shard,
         assets: Vec::new(),
+        left_out: Default::default(),
     }
 }
 

@@ -127,7 +127,111 @@ pub fn ground_truth(
             }
         })
         .collect();
-    GroundTruth { part_p, part_q, motions, flow, corr_mask, corr_index, joints }
+    GroundTruth { part_p, part_q, motions, flow: Some(flow), corr_mask, corr_index, joints }
+}
+
+/// Whether two objects of one category can be matched part for part: the same links and
+/// joints by name, joint kind and place in the tree, joint axes pointing the same way in
+/// the rest frame (a door hinged on the other side is not the same joint), and the same
+/// mimic rules.
+pub fn same_structure(a: &ArticulatedObject, b: &ArticulatedObject) -> bool {
+    let links = |o: &ArticulatedObject| o.links.iter().map(|l| l.name.clone()).collect::<Vec<_>>();
+    let joints = |o: &ArticulatedObject| {
+        o.joints.iter().map(|j| (j.name.clone(), j.kind, j.parent, j.child)).collect::<Vec<_>>()
+    };
+    let mimics =
+        |o: &ArticulatedObject| o.mimics.iter().map(|m| (m.joint, m.leader)).collect::<Vec<_>>();
+    let aligned = a.joints.iter().zip(&b.joints).all(|(x, y)| x.axis.dot(&y.axis) > 0.5);
+    a.category == b.category
+        && links(a) == links(b)
+        && aligned
+        && joints(a) == joints(b)
+        && mimics(a) == mimics(b)
+}
+
+/// The rigid parts of a cross-instance pair: a link joins its parent's part when its joint
+/// has the same value in P's state (of one object) and Q's state (of the other), as a link
+/// whose joint did not move joins its parent in a pair of one object. Links come after
+/// their parents (the model's rule), so one pass in link order suffices.
+pub fn parts_by_values(object: &ArticulatedObject, values_p: &[Real], values_q: &[Real]) -> Parts {
+    let mut of_link: Vec<PartId> = vec![0; object.links.len()];
+    let mut first_link = vec![0];
+    for link in 1..object.links.len() {
+        let joint = object.joints.iter().position(|j| j.child == link);
+        of_link[link] = match joint {
+            Some(j) if values_p[j] != values_q[j] => {
+                first_link.push(link);
+                (first_link.len() - 1) as PartId
+            }
+            Some(j) => of_link[object.joints[j].parent],
+            None => 0,
+        };
+    }
+    Parts { of_link, first_link }
+}
+
+/// The frame of `link` in an object the category defines: the link's pose composed with the
+/// pivot of the joint that moves it (the object's rest frame for the root).
+fn link_frame(object: &ArticulatedObject, poses: &[Isometry3], link: usize) -> Isometry3 {
+    let pivot =
+        object.joints.iter().find(|j| j.child == link).map_or(Point3::origin(), |j| j.pivot);
+    poses[link] * Isometry3::translation(pivot.x, pivot.y, pivot.z)
+}
+
+/// The ground truth of a cross-instance pair: P observes `object_p`, Q observes `object_q`
+/// (same links and joints by name, [`same_structure`]). Part k's motion maps its frame in
+/// P's object onto its frame in Q's object ([`link_frame`] of the part's first link: the
+/// joint's pivot and the link's orientation), so a hinge goes to the other object's hinge.
+/// No flow and no point correspondences are defined between two shapes: the flow is
+/// absent, `corr_mask` all false, `corr_index` all -1. Each joint is given in both objects.
+pub fn cross_ground_truth(
+    (object_p, object_q): (&ArticulatedObject, &ArticulatedObject),
+    p: &Side,
+    q: &Side,
+    parts: &Parts,
+) -> GroundTruth {
+    let (norm_p, norm_q) = (&p.cloud.normalisation, &q.cloud.normalisation);
+    let motions: Vec<Similarity> = parts
+        .first_link
+        .iter()
+        .map(|&l| {
+            let motion =
+                link_frame(object_q, q.poses, l) * link_frame(object_p, p.poses, l).inverse();
+            Similarity::between_normalised(&motion, norm_p, norm_q)
+        })
+        .collect();
+    let part_p: Vec<PartId> = p.samples.iter().map(|s| parts.of_link[s.link]).collect();
+    let part_q: Vec<PartId> = q.samples.iter().map(|s| parts.of_link[s.link]).collect();
+    let n = part_p.len();
+    let joints = object_p
+        .joints
+        .iter()
+        .zip(&object_q.joints)
+        .enumerate()
+        .filter(|(_, (j, _))| parts.of_link[j.child] != parts.of_link[j.parent])
+        .map(|(index, (jp, jq))| {
+            let (pose_p, pose_q) = (&p.poses[jp.parent], &q.poses[jq.parent]);
+            JointTruth {
+                part: parts.of_link[jp.child],
+                kind: jp.kind,
+                axis_p: pairs::math::unit_or(&(pose_p.rotation * jp.axis), jp.axis),
+                pivot_p: norm_p.apply(&(pose_p * jp.pivot)),
+                axis_q: pairs::math::unit_or(&(pose_q.rotation * jq.axis), jq.axis),
+                pivot_q: norm_q.apply(&(pose_q * jq.pivot)),
+                value_p: p.values[index],
+                value_q: q.values[index],
+            }
+        })
+        .collect();
+    GroundTruth {
+        part_p,
+        part_q,
+        motions,
+        flow: None,
+        corr_mask: vec![false; n],
+        corr_index: vec![-1; n],
+        joints,
+    }
 }
 
 /// Index of the point of `cloud` labelled `part` nearest to `x`, or -1 if there is none.

@@ -18,6 +18,8 @@ pub enum Stream {
     Pair(u32),
     /// The scanner's viewpoints and noise for a candidate pair, in one variant.
     Scan(u32, u32),
+    /// The seed of the `k`-th second instance tried for a cross-instance pair.
+    Partner(u32),
 }
 
 /// The random stream for `purpose` of object `object` in a dataset with `seed`.
@@ -29,6 +31,8 @@ pub fn rng_for(seed: u64, object: u64, purpose: Stream) -> Rng {
         Stream::Pair(k) => 2 + u64::from(k),
         // Bit 23 set, then 7 bits of variant and 16 of pair: apart from every `Pair(k)`.
         Stream::Scan(k, v) => 1 << 23 | (u64::from(v) & 0x7f) << 16 | (u64::from(k) & 0xffff),
+        // Bit 22 set (under bit 23): apart from every `Pair(k)` below 2^22 and every `Scan`.
+        Stream::Partner(k) => 1 << 22 | (u64::from(k) & 0xffff),
     };
     // ChaCha's 64-bit stream id: 24 bits of purpose under 40 bits of object index.
     rng.set_stream((object << 24) | (purpose & 0xff_ffff));
@@ -48,5 +52,7 @@ mod tests {
         assert_ne!(draw(3, Stream::Object), draw(4, Stream::Object));
         assert_ne!(draw(3, Stream::Scan(2, 0)), draw(3, Stream::Scan(2, 1)));
         assert_ne!(draw(3, Stream::Scan(2, 0)), draw(3, Stream::Pair(2)));
+        assert_ne!(draw(3, Stream::Partner(0)), draw(3, Stream::Partner(1)));
+        assert_ne!(draw(3, Stream::Partner(0)), draw(3, Stream::Pair(0)));
     }
 }

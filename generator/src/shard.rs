@@ -115,6 +115,12 @@ pub fn merge_shards(
     }
     let mut origin = origin.clone();
     origin.shard = None;
+    origin.left_out.clear();
+    for (_, dataset) in &opened {
+        for (category, n) in &dataset.manifest().origin.left_out {
+            *origin.left_out.entry(category.clone()).or_insert(0) += n;
+        }
+    }
     opened.sort_by_key(|(s, _)| s.index);
     let mut writer = DatasetWriter::create(out, overwrite)?;
     for (_, dataset) in &opened {

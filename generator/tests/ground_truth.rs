@@ -28,6 +28,7 @@ fn check_motions(config: &GeneratorConfig) -> Result<(), String> {
     let object = build_object(config, 0).map_err(|e| e.to_string())?;
     for generated in object_pairs(config, 0).map_err(|e| e.to_string())? {
         let (input, truth) = (generated.pair.input(), generated.pair.truth());
+        let flow = truth.flow.as_deref().ok_or_else(|| format!("{}: no flow", input.id))?;
         let norm_q = input.q.normalisation;
         // Q's posed mesh in Q's normalised frame, one mesh per part.
         for part in 0..truth.num_parts() {
@@ -55,7 +56,7 @@ fn check_motions(config: &GeneratorConfig) -> Result<(), String> {
                         input.id
                     ));
                 }
-                if (moved - p - truth.flow[i]).norm() >= 1e-5 {
+                if (moved - p - flow[i]).norm() >= 1e-5 {
                     return Err(format!("{}: flow {i} is not the motion", input.id));
                 }
             }

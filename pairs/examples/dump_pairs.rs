@@ -49,7 +49,7 @@ fn dump(pair: &Pair) -> Value {
         "scale": scale,
         "rotations": truth.motions.iter().map(|m| rows(&m.rotation)).collect::<Vec<_>>(),
         "translations": truth.motions.iter().map(|m| vector(&m.translation)).collect::<Vec<_>>(),
-        "flow": truth.flow.iter().map(vector).collect::<Vec<_>>(),
+        "flow": truth.flow.as_ref().map(|f| f.iter().map(vector).collect::<Vec<_>>()),
         "corr_mask": truth.corr_mask,
         "corr_index": truth.corr_index,
         "joints": truth.joints.iter().map(|j| json!({

@@ -15,9 +15,12 @@ pub struct GroundTruth {
     /// `motions[k]` maps part k from P's normalised frame to Q's normalised frame; all share
     /// one scale.
     pub motions: Vec<Similarity>,
-    /// Per point of P: `motions[part_p[i]](p_i) - p_i`, Q's normalised units.
-    pub flow: Vec<Vector3>,
-    /// Per point of P: whether the moved point is present in Q.
+    /// Per point of P: `motions[part_p[i]](p_i) - p_i`, Q's normalised units. `None` for a
+    /// cross-instance pair (XF2F, XF2P): no flow is defined between two different shapes,
+    /// and an absent flow is never read as zero.
+    pub flow: Option<Vec<Vector3>>,
+    /// Per point of P: whether the moved point is present in Q (all false for a
+    /// cross-instance pair: no point of one object has a counterpart on another).
     pub corr_mask: Vec<bool>,
     /// Per point of P: index of the nearest point of Q of the same part to the moved point
     /// where `corr_mask` holds, else -1.

@@ -23,6 +23,14 @@ pub enum PairKind {
     /// Virtual scan to virtual scan.
     #[serde(rename = "SP2P")]
     Sp2p,
+    /// Cross-instance: the full shape of one object to the full shape of another object of
+    /// the same category. Parts correspond by role; there is no flow.
+    #[serde(rename = "XF2F")]
+    Xf2f,
+    /// Cross-instance: the full shape of one object to a virtual scan of another object of
+    /// the same category. Parts correspond by role; there is no flow.
+    #[serde(rename = "XF2P")]
+    Xf2p,
 }
 
 impl PairKind {
@@ -32,7 +40,40 @@ impl PairKind {
             Self::Sf2f => "SF2F",
             Self::Sf2p => "SF2P",
             Self::Sp2p => "SP2P",
+            Self::Xf2f => "XF2F",
+            Self::Xf2p => "XF2P",
         }
+    }
+
+    /// Every kind, in the order the boards list them.
+    pub const ALL: [PairKind; 5] = [Self::Sf2f, Self::Sf2p, Self::Sp2p, Self::Xf2f, Self::Xf2p];
+
+    /// Whether P and Q are two different objects of one category (no flow, no point
+    /// correspondences; parts correspond by their role in the category).
+    pub fn cross_instance(self) -> bool {
+        matches!(self, Self::Xf2f | Self::Xf2p)
+    }
+
+    /// Whether P is a virtual scan.
+    pub fn scanned_p(self) -> bool {
+        matches!(self, Self::Sp2p)
+    }
+
+    /// Whether Q is a virtual scan.
+    pub fn scanned_q(self) -> bool {
+        matches!(self, Self::Sf2p | Self::Sp2p | Self::Xf2p)
+    }
+}
+
+impl std::str::FromStr for PairKind {
+    type Err = String;
+
+    /// Parses a kind's name, in either case (`sf2p`, `XF2F`).
+    fn from_str(s: &str) -> Result<Self, Self::Err> {
+        Self::ALL.into_iter().find(|k| k.as_str().eq_ignore_ascii_case(s)).ok_or_else(|| {
+            let names: Vec<_> = Self::ALL.iter().map(|k| k.as_str().to_lowercase()).collect();
+            format!("unknown pair kind {s:?}; expected one of {}", names.join(", "))
+        })
     }
 }
 
@@ -50,6 +91,11 @@ pub struct Provenance {
     pub articulation_q: u32,
     /// Seed of the dataset the pair belongs to.
     pub seed: u64,
+    /// For a cross-instance pair (XF2F, XF2P), the seed that built Q's object: it is object
+    /// `object_id` of the same dataset config with this seed (P's object is built with
+    /// `seed`), and `articulation_q` indexes its states. Absent when P and Q are one object.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub seed_q: Option<u64>,
     /// Version of the generator that made it.
     pub generator_version: String,
     /// Every joint of the object by name (the exported URDF's joint names), unchanged ones

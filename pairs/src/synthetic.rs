@@ -79,7 +79,7 @@ pub fn two_part_pair(
         part_p: parts.clone(),
         part_q: parts,
         motions,
-        flow,
+        flow: Some(flow),
         corr_mask: vec![true; n],
         corr_index: (0..n as i32).collect(),
         joints: vec![joint],
@@ -95,4 +95,31 @@ pub fn two_part_pair(
     };
     Pair::new(PairInput { id: id.into(), kind: PairKind::Sf2f, p, q }, truth, provenance)
         .expect("the two-part pair satisfies every invariant by construction")
+}
+
+/// The cross-instance (XF2F) rendition of `pair`: Q's cloud stretched by `stretch` along x
+/// before normalisation stands for a second object of the category, so the record keeps the
+/// part ids, motions and joints, and has no flow and no point correspondences.
+///
+/// # Panics
+/// If the stretched cloud does not span a box, which no test shape does.
+pub fn cross_instance(pair: Pair, stretch: Real) -> Pair {
+    let (mut input, mut truth, mut provenance) = pair.into_parts();
+    let object_q: Vec<Point3> = input
+        .q
+        .points
+        .iter()
+        .map(|x| {
+            let x = input.q.normalisation.invert(x);
+            Point3::new(x.x * stretch, x.y, x.z)
+        })
+        .collect();
+    input.q = Cloud::normalise(&object_q).expect("the stretched cloud spans a box");
+    input.kind = PairKind::Xf2f;
+    let n = input.p.len();
+    truth.flow = None;
+    truth.corr_mask = vec![false; n];
+    truth.corr_index = vec![-1; n];
+    provenance.seed_q = Some(provenance.seed + 1);
+    Pair::new(input, truth, provenance).expect("a cross-instance pair without flow is valid")
 }

@@ -24,7 +24,19 @@ pub(crate) fn pair(input: &PairInput, truth: &GroundTruth) -> Result<(), PairErr
     normalisation(id, "q", &input.q.normalisation)?;
     length(id, "part_p", n_p, truth.part_p.len())?;
     length(id, "part_q", n_q, truth.part_q.len())?;
-    length(id, "flow", n_p, truth.flow.len())?;
+    match (&truth.flow, input.kind.cross_instance()) {
+        (Some(flow), false) => length(id, "flow", n_p, flow.len())?,
+        (None, true) => {}
+        (Some(_), true) => {
+            let reason =
+                format!("a {} pair has no flow (two different shapes)", input.kind.as_str());
+            return Err(inconsistent(id, "flow", 0, reason));
+        }
+        (None, false) => {
+            let reason = format!("a {} pair needs its flow", input.kind.as_str());
+            return Err(inconsistent(id, "flow", 0, reason));
+        }
+    }
     length(id, "corr_mask", n_p, truth.corr_mask.len())?;
     length(id, "corr_index", n_p, truth.corr_index.len())?;
     let parts = truth.num_parts();
@@ -111,7 +123,8 @@ fn motions(id: &str, truth: &GroundTruth) -> Result<(), PairError> {
 }
 
 fn flow(id: &str, input: &PairInput, truth: &GroundTruth) -> Result<(), PairError> {
-    for (i, (p, f)) in input.p.points.iter().zip(&truth.flow).enumerate() {
+    let Some(flow) = &truth.flow else { return Ok(()) };
+    for (i, (p, f)) in input.p.points.iter().zip(flow).enumerate() {
         finite(id, "flow", i, f.as_slice())?;
         let moved = truth.motions[usize::from(truth.part_p[i])].apply(p);
         let err = (moved - p - f).norm();

@@ -17,6 +17,7 @@ fn origin() -> DatasetOrigin {
         splits: Default::default(),
         shard: None,
         assets: Vec::new(),
+        left_out: Default::default(),
     }
 }
 
@@ -218,7 +219,7 @@ fn invalid_records_name_the_pair_and_the_field() {
     let path = dir.path().join(PAIRS_FILE);
     let good = PairRecord::from_pair(&synthetic::hinge_pair("bad-one", 3, 0.2));
     let mut nan_flow = good.clone();
-    nan_flow.flow[0..4].copy_from_slice(&f32::NAN.to_le_bytes());
+    nan_flow.flow.as_mut().expect("a flow")[0..4].copy_from_slice(&f32::NAN.to_le_bytes());
     let mut short_parts = good.clone();
     short_parts.part_q.pop();
     let mut part_range = good.clone();
@@ -229,8 +230,14 @@ fn invalid_records_name_the_pair_and_the_field() {
     bad_index.corr_index[0..4].copy_from_slice(&1000i32.to_le_bytes());
     let mut bad_mask = good.clone();
     bad_mask.corr_mask[1] = 0;
-    let cases: [(PairRecord, &str); 6] = [
+    let mut no_flow = good.clone();
+    no_flow.flow = None;
+    let mut cross_with_flow = good.clone();
+    cross_with_flow.kind = pairs::PairKind::Xf2f;
+    let cases: [(PairRecord, &str); 8] = [
         (nan_flow, "flow"),
+        (no_flow, "flow"),
+        (cross_with_flow, "flow"),
         (short_parts, "part_q"),
         (part_range, "part_p"),
         (odd_bytes, "p.points"),
@@ -249,6 +256,27 @@ fn invalid_records_name_the_pair_and_the_field() {
             other => panic!("expected an invalid pair for {field}, got {other}"),
         }
     }
+}
+
+#[test]
+fn a_cross_instance_pair_round_trips_without_a_flow() {
+    let dir = tempfile::tempdir().expect("tempdir");
+    let pair = synthetic::cross_instance(synthetic::hinge_pair("x", 4, 0.6), 1.3);
+    let record = PairRecord::from_pair(&pair);
+    assert!(record.flow.is_none(), "no flow is written");
+    let mut writer = DatasetWriter::create(dir.path(), false).expect("create");
+    writer.write(&pair).expect("write");
+    writer.finish(origin()).expect("finish");
+    let read: Vec<Pair> = pairs::dataset::Dataset::open(dir.path())
+        .expect("open")
+        .pairs()
+        .expect("pairs")
+        .collect::<Result<_, _>>()
+        .expect("valid pairs");
+    assert_eq!(read, vec![pair.clone()]);
+    assert_eq!(read[0].input().kind, pairs::PairKind::Xf2f);
+    assert!(read[0].truth().flow.is_none());
+    assert_eq!(read[0].provenance().seed_q, Some(1));
 }
 
 #[test]

@@ -56,6 +56,7 @@ fn write_seeds() {
         splits: Default::default(),
         shard: None,
         assets: Vec::new(),
+        left_out: Default::default(),
     };
     writer.finish(origin).expect("finish");
     let pairs_file = std::fs::read(tmp.path().join(PAIRS_FILE)).expect("written");
@@ -65,11 +66,11 @@ fn write_seeds() {
     let mut writer = PredictionWriter::create(&predictions, &header).expect("create");
     let t = pair.truth();
     let full = Prediction {
-        flow: Some(t.flow.clone()),
+        flow: t.flow.clone(),
         segments_p: t.part_p.iter().map(|&k| u32::from(k)).collect(),
         segments_q: t.part_q.iter().map(|&k| u32::from(k)).collect(),
         motions: t.motions.clone(),
-        corr_mask: Some(vec![1.0; t.flow.len()]),
+        corr_mask: Some(vec![1.0; t.part_p.len()]),
         ..Prediction::default()
     };
     writer.write(&PredictionRecord::from_prediction(pair.id(), &full)).expect("write");

@@ -26,7 +26,7 @@ fn full_prediction() -> (String, Prediction) {
     let mut turned = t.motions[1];
     turned.scale = 0.9;
     let prediction = Prediction {
-        flow: Some(t.flow.clone()),
+        flow: t.flow.clone(),
         // Segment ids swapped against the part ids.
         segments_p: t.part_p.iter().map(|&k| 1 - u32::from(k)).collect(),
         segments_q: t.part_q.iter().map(|&k| 1 - u32::from(k)).collect(),

@@ -43,6 +43,7 @@ fn the_documented_python_snippet_reads_a_pair() {
             splits: Default::default(),
             shard: None,
             assets: Vec::new(),
+            left_out: Default::default(),
         })
         .expect("finish");
 

@@ -5,11 +5,11 @@
 use pairs::math::{Isometry3, Point3, Real};
 use pairs::parts::part_sizes;
 use pairs::scan::{PairImages, ScanImages};
-use pairs::{Cloud, Pair, PairInput, PairKind, Pose, Provenance, Scan, Scans};
+use pairs::{Cloud, Pair, PairInput, Pose, Provenance, Scan, Scans};
 
 use crate::config::GeneratorConfig;
 use crate::kinematics::link_poses;
-use crate::label::{ground_truth, merge_links, Parts, Side};
+use crate::label::{cross_ground_truth, ground_truth, merge_links, parts_by_values, Parts, Side};
 use crate::objects::ArticulatedObject;
 use crate::protocol::global_pose;
 use crate::sampling::{SurfacePoint, SurfaceSampler};
@@ -26,6 +26,19 @@ pub(super) struct Scene<'a> {
     pub(super) sampler: &'a SurfaceSampler,
     pub(super) index: u32,
     pub(super) variant: Variant,
+    /// The second object Q observes in a cross-instance pair; `None` when Q observes
+    /// `object` too.
+    pub(super) partner: Option<Partner<'a>>,
+}
+
+/// The second instance of a cross-instance pair: another object of the same category with
+/// the same links and joints by name, built from its own seed.
+#[derive(Clone, Copy)]
+pub(super) struct Partner<'a> {
+    pub(super) object: &'a ArticulatedObject,
+    pub(super) sampler: &'a SurfaceSampler,
+    /// The seed that built it (object `index` of the dataset's config with this seed).
+    pub(super) seed: u64,
 }
 
 /// One articulation state: its index among the object's states and its joint values.
@@ -61,44 +74,48 @@ pub(super) fn make_pair(
     state_q: State,
     rng: &mut Rng,
 ) -> Result<Option<GeneratedPair>, GenerateError> {
-    let Scene { config, object, sampler, index: object_index, variant } = *scene;
+    let Scene { config, object, sampler, index: object_index, variant, partner } = *scene;
+    // Q's object: the same one, or the second instance of a cross-instance pair.
+    let (object_q, sampler_q) = partner.map_or((object, sampler), |o| (o.object, o.sampler));
     let (values_p, values_q) = (state_p.values, state_q.values);
     let n = config.points as usize;
-    let pose = |values: &[Real], rng: &mut Rng| {
+    let pose = |object: &ArticulatedObject, values: &[Real], rng: &mut Rng| {
         let global =
             global_pose(config.pose_rotation_deg as Real, config.pose_translation as Real, rng);
         let links = link_poses(object, values).into_iter().map(|l| global * l).collect::<Vec<_>>();
         (global, links)
     };
-    let (global_p, poses_p) = pose(values_p, rng);
-    let (global_q, poses_q) = pose(values_q, rng);
+    let (global_p, poses_p) = pose(object, values_p, rng);
+    let (global_q, poses_q) = pose(object_q, values_q, rng);
     let motions: Vec<Isometry3> =
         poses_q.iter().zip(&poses_p).map(|(q, p)| q * p.inverse()).collect();
-    let (scan_p, scan_q) = match variant.kind {
-        PairKind::Sf2f => (false, false),
-        PairKind::Sf2p => (false, true),
-        PairKind::Sp2p => (true, true),
-    };
+    let (scan_p, scan_q) = (variant.kind.scanned_p(), variant.kind.scanned_q());
     let id = pair_id(variant, object_index, pair_index);
+    let link_parts = |size: Real| match partner {
+        Some(_) => parts_by_values(object, values_p, values_q),
+        None => merge_links(&motions, size),
+    };
     let (obs_p, obs_q, parts) = if scan_q {
         // Parts come first: the scanner checks that every part is seen.
-        let size = (object_size(object, &poses_p))?;
-        let parts = merge_links(&motions, size);
+        let parts = link_parts(object_size(object, &poses_p)?);
         let mut scan_rng =
             rng_for(config.seed, u64::from(object_index), Stream::Scan(candidate, variant.index));
-        let observe = |poses: &[Isometry3], scanned: bool, rng: &mut Rng| {
-            observe_side(scene, poses, scanned.then_some(&parts), rng)
-        };
-        let Some(p) = observe(&poses_p, scan_p, if scan_p { &mut scan_rng } else { rng })? else {
+        let Some(p) = (if scan_p {
+            observe_side(config, (object, sampler), &poses_p, Some(&parts), &mut scan_rng)?
+        } else {
+            observe_side(config, (object, sampler), &poses_p, None, rng)?
+        }) else {
             return Ok(None);
         };
-        let Some(q) = observe(&poses_q, true, &mut scan_rng)? else {
+        let Some(q) =
+            observe_side(config, (object_q, sampler_q), &poses_q, Some(&parts), &mut scan_rng)?
+        else {
             return Ok(None);
         };
         (p, q, Some(parts))
     } else {
         let samples_p = sampler.sample(object, n, rng);
-        let samples_q = sampler.sample(object, n, rng);
+        let samples_q = sampler_q.sample(object_q, n, rng);
         (
             Observation { samples: samples_p, scan: None },
             Observation { samples: samples_q, scan: None },
@@ -112,11 +129,13 @@ pub(super) fn make_pair(
     let (Some(cloud_p), Some(cloud_q)) = (cloud(&obs_p, &poses_p), cloud(&obs_q, &poses_q)) else {
         return Ok(None);
     };
-    let parts = parts.unwrap_or_else(|| merge_links(&motions, cloud_p.normalisation.scale));
-    let present = presence(&obs_p, &obs_q, &poses_q);
+    let parts = parts.unwrap_or_else(|| link_parts(cloud_p.normalisation.scale));
     let p = Side { samples: &obs_p.samples, poses: &poses_p, values: values_p, cloud: &cloud_p };
     let q = Side { samples: &obs_q.samples, poses: &poses_q, values: values_q, cloud: &cloud_q };
-    let truth = ground_truth(object, &p, &q, &parts, &present);
+    let truth = match partner {
+        Some(_) => cross_ground_truth((object, object_q), &p, &q, &parts),
+        None => ground_truth(object, &p, &q, &parts, &presence(&obs_p, &obs_q, &poses_q)),
+    };
     let min = config.min_part_points as usize;
     let too_small = |ids: &[u8]| part_sizes(ids, parts.count()).into_iter().any(|s| s < min);
     if parts.count() < 2 || too_small(&truth.part_p) || too_small(&truth.part_q) {
@@ -129,9 +148,10 @@ pub(super) fn make_pair(
         articulation_p: state_p.index as u32,
         articulation_q: state_q.index as u32,
         seed: config.seed,
+        seed_q: partner.map(|o| o.seed),
         generator_version: GENERATOR_VERSION.into(),
         joints_p: configuration(object, values_p),
-        joints_q: configuration(object, values_q),
+        joints_q: configuration(object_q, values_q),
         pose_p: Some(Pose::of(&global_p)),
         pose_q: Some(Pose::of(&global_q)),
     };
@@ -182,28 +202,26 @@ pub(super) fn object_size(
     Ok((max - min).norm())
 }
 
-/// One side's points: N surface samples, or a scan when `parts` is given.
+/// One side's points of `object`: N surface samples, or a scan when `parts` is given.
 pub(super) fn observe_side(
-    scene: &Scene,
+    config: &GeneratorConfig,
+    (object, sampler): (&ArticulatedObject, &SurfaceSampler),
     poses: &[Isometry3],
     parts: Option<&Parts>,
     rng: &mut Rng,
 ) -> Result<Option<Observation>, GenerateError> {
-    let n = scene.config.points as usize;
+    let n = config.points as usize;
     let Some(parts) = parts else {
-        return Ok(Some(Observation {
-            samples: scene.sampler.sample(scene.object, n, rng),
-            scan: None,
-        }));
+        return Ok(Some(Observation { samples: sampler.sample(object, n, rng), scan: None }));
     };
     let needs = Requirements {
         part_of_link: &parts.of_link,
         parts: parts.count(),
         points: n,
-        min_part_points: scene.config.min_part_points as usize,
+        min_part_points: config.min_part_points as usize,
     };
-    let scanner = scene.config.scanner();
-    let scan = scan_side(scene.object, scene.sampler, poses, &scanner, &needs, rng)?;
+    let scanner = config.scanner();
+    let scan = scan_side(object, sampler, poses, &scanner, &needs, rng)?;
     Ok(scan.map(|s| Observation { samples: s.samples.clone(), scan: Some(s) }))
 }
 

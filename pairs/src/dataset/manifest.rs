@@ -60,6 +60,11 @@ pub struct DatasetOrigin {
     /// absent for the procedural categories.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub assets: Vec<AssetRecord>,
+    /// Cross-instance sets (XF2F, XF2P): objects left out per category because no second
+    /// instance of their category could be matched to them part for part (same links and
+    /// joints by name). Absent when none was left out.
+    #[serde(default, skip_serializing_if = "BTreeMap::is_empty")]
+    pub left_out: BTreeMap<String, u32>,
 }
 
 /// One user asset of a dataset: its files with their checksums, and its object id or the

@@ -74,7 +74,7 @@ pub struct PairRecord {
     pub schema_version: u32,
     /// Unique pair id.
     pub id: String,
-    /// `SF2F`, `SF2P` or `SP2P`.
+    /// `SF2F`, `SF2P`, `SP2P`, `XF2F` or `XF2P`.
     pub kind: PairKind,
     /// The source cloud.
     pub p: CloudRecord,
@@ -90,8 +90,9 @@ pub struct PairRecord {
     pub scale: Real,
     /// K part motions.
     pub motions: Vec<MotionRecord>,
-    /// `N_p x 3` f32 flow, little-endian.
-    pub flow: ByteBuf,
+    /// `N_p x 3` f32 flow, little-endian; absent in a cross-instance pair (XF2F, XF2P).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub flow: Option<ByteBuf>,
     /// Per point of P, u8 0 or 1.
     pub corr_mask: ByteBuf,
     /// Per point of P, i32 little-endian, -1 where the mask is 0.
@@ -146,7 +147,10 @@ impl PairRecord {
             part_q: ByteBuf::from(truth.part_q.clone()),
             scale: truth.motions.first().map_or(1.0, |m| m.scale),
             motions: truth.motions.iter().map(motion_record).collect(),
-            flow: ByteBuf::from(f32_bytes(truth.flow.iter().flat_map(|v| v.iter().copied()))),
+            flow: truth
+                .flow
+                .as_ref()
+                .map(|flow| ByteBuf::from(f32_bytes(flow.iter().flat_map(|v| v.iter().copied())))),
             corr_mask: ByteBuf::from(
                 truth.corr_mask.iter().map(|&m| u8::from(m)).collect::<Vec<_>>(),
             ),
@@ -177,7 +181,7 @@ impl PairRecord {
         }
         let p = cloud(&id, "p.points", self.p)?;
         let q = cloud(&id, "q.points", self.q)?;
-        let flow = vectors(&id, "flow", &self.flow)?;
+        let flow = self.flow.as_ref().map(|f| vectors(&id, "flow", f)).transpose()?;
         let corr_mask = self
             .corr_mask
             .iter()

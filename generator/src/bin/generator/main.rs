@@ -23,7 +23,8 @@ use commands::{export_command, export_objects_command, merge, progress_bar, repo
 ///
 /// With no arguments it writes the paper-size SF2F set (175 objects, 875 pairs, N = 512,
 /// seed 0, held-out test categories) to datasets/sf2f; `--kind sf2p` and `--kind sp2p`
-/// write the scanned sets to datasets/sf2p and datasets/sp2p. Flags override the values of
+/// write the scanned sets to datasets/sf2p and datasets/sp2p, `--kind xf2f` and `--kind xf2p`
+/// the cross-instance sets (two objects of one category). Flags override the values of
 /// --config, which override the built-in defaults (datasets/sf2f.toml, sf2p.toml and
 /// sp2p.toml list them).
 #[derive(Debug, Parser)]
@@ -97,7 +98,9 @@ struct Selection {
 #[derive(Debug, clap::Args)]
 struct Sampling {
     /// Kind of pairs: SF2F (full to full), SF2P (full to a virtual scan) or SP2P (scan to
-    /// scan, with depth, label and colour images under <out>/images). The scanner's
+    /// scan, with depth, label and colour images under <out>/images); XF2F and XF2P are
+    /// cross-instance: P and Q are two different objects of one category (full to full,
+    /// full to a scan), parts matched by role, no flow (docs/DATASETS.md). The scanner's
     /// settings are the [scan] table of --config (datasets/sf2p.toml lists them).
     #[arg(long, value_parser = parse_kind)]
     kind: Option<PairKind>,
@@ -120,6 +123,7 @@ struct Sampling {
 const EXAMPLES: &str = "Examples:
   generator --kind sf2p                                   the paper-size SF2P set, datasets/sf2p
   generator --kind sp2p -n 20 --out /tmp/sp2p             20 objects of scan pairs with images
+  generator --kind xf2p                                   two objects of a category, full to scan
   generator --split train -n 20000 --out datasets/train   a training set on disk
   generator --shard 3/8 --out shards/3                    shard 3 of 8 (cluster array job)
   generator merge shards/* --out datasets/sf2f            the shards as one dataset
@@ -203,12 +207,7 @@ fn parse_range(s: &str) -> Result<[f64; 2], String> {
 }
 
 fn parse_kind(s: &str) -> Result<PairKind, String> {
-    match s.to_ascii_uppercase().as_str() {
-        "SF2F" => Ok(PairKind::Sf2f),
-        "SF2P" => Ok(PairKind::Sf2p),
-        "SP2P" => Ok(PairKind::Sp2p),
-        _ => Err(format!("unknown kind {s:?} (SF2F, SF2P or SP2P)")),
-    }
+    s.parse()
 }
 
 impl Selection {

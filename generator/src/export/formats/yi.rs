@@ -57,8 +57,18 @@ impl YiExport {
                 });
             }
         }
+        let Some(flow) = &truth.flow else {
+            return Err(FormatError::Shape {
+                pair: pair.id().into(),
+                reason: format!(
+                    "a {} pair has no flow (two different objects); yi-mat's flow12 and \
+                     flow.mat need one",
+                    input.kind.as_str()
+                ),
+            });
+        };
         self.ids.push(pair.id().into());
-        for (p, f) in input.p.points.iter().zip(&truth.flow) {
+        for (p, f) in input.p.points.iter().zip(flow) {
             self.pc1.extend_from_slice(p.coords.as_slice());
             self.flow12.extend_from_slice(f.as_slice());
             self.moved.extend_from_slice((p.coords + f).as_slice());
