@@ -17,7 +17,11 @@ fn bench(c: &mut Criterion) {
         .measurement_time(Duration::from_secs(3));
     for segmenter in segmenters() {
         group.bench_function(segmenter.name(), |b| {
-            b.iter(|| segmenter.segment(pair.input(), &pair.truth().flow).expect("segments"))
+            b.iter(|| {
+                segmenter
+                    .segment(pair.input(), pair.truth().flow.as_deref().expect("a flow"))
+                    .expect("segments")
+            })
         });
     }
     for method in methods() {

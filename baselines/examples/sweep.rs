@@ -81,7 +81,8 @@ fn main() -> anyhow::Result<()> {
     let count: usize = args.get(1).map_or(Ok(20), |a| a.parse())?;
     let points: u32 = args.get(2).map_or(Ok(512), |a| a.parse())?;
     let pairs = validation_pairs(points, count)?;
-    let clean: Vec<Vec<Vector3>> = pairs.iter().map(|p| p.truth().flow.clone()).collect();
+    let clean: Vec<Vec<Vector3>> =
+        pairs.iter().map(|p| p.truth().flow.clone().expect("a flow")).collect();
     let noisy: Vec<Vec<Vector3>> = clean
         .iter()
         .enumerate()
@@ -173,7 +174,10 @@ fn main() -> anyhow::Result<()> {
         let mut total = 0.0;
         for pair in &pairs {
             let prediction = method.predict(pair.input())?;
-            total += epe(prediction.flow.as_deref().unwrap_or_default(), &pair.truth().flow)?;
+            total += epe(
+                prediction.flow.as_deref().unwrap_or_default(),
+                pair.truth().flow.as_deref().expect("a flow"),
+            )?;
         }
         icp_rows.push((keep, total / pairs.len() as f64));
     }
@@ -203,8 +207,10 @@ fn main() -> anyhow::Result<()> {
                 let matching = matched_iou(&prediction.segments_p, &pair.truth().part_p)?;
                 iou += matching.iou.iter().sum::<f64>();
                 parts += matching.iou.len();
-                flow_error +=
-                    epe(prediction.flow.as_deref().unwrap_or_default(), &pair.truth().flow)?;
+                flow_error += epe(
+                    prediction.flow.as_deref().unwrap_or_default(),
+                    pair.truth().flow.as_deref().expect("a flow"),
+                )?;
             }
             nrr_rows.push((
                 format!("{features}/{threshold}"),
@@ -233,7 +239,10 @@ fn main() -> anyhow::Result<()> {
         let mut total = 0.0;
         for pair in &pairs {
             let prediction = method.predict(pair.input())?;
-            total += epe(prediction.flow.as_deref().unwrap_or_default(), &pair.truth().flow)?;
+            total += epe(
+                prediction.flow.as_deref().unwrap_or_default(),
+                pair.truth().flow.as_deref().expect("a flow"),
+            )?;
         }
         let e = total / pairs.len() as f64;
         writeln!(csv, "{},defaults,,own,{},{points},,,{e:.4},", method.name(), pairs.len())?;

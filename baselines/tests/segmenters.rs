@@ -16,7 +16,9 @@ use support::{
 fn exact_flow_recovers_both_parts_and_their_motions() {
     let pair = hinge();
     for segmenter in segmenters() {
-        let prediction = segmenter.segment(pair.input(), &pair.truth().flow).expect("segments");
+        let prediction = segmenter
+            .segment(pair.input(), pair.truth().flow.as_deref().expect("a flow"))
+            .expect("segments");
         let (iou, rot) =
             (min_iou(&prediction, &pair.truth().part_p), max_rotation_error(&prediction, &pair));
         assert!(iou > 0.95, "{}: IoU {iou}", segmenter.name());
@@ -30,7 +32,7 @@ fn noisy_flow_with_outliers_still_finds_the_parts() {
     let pair = hinge();
     for seed in 0..3 {
         // 5% Gaussian flow noise and 10% outliers, as defined in `support::corrupt_flow`.
-        let flow = corrupt_flow(&pair.truth().flow, 0.05, 0.10, seed);
+        let flow = corrupt_flow(pair.truth().flow.as_deref().expect("a flow"), 0.05, 0.10, seed);
         for segmenter in segmenters() {
             let prediction = segmenter.segment(pair.input(), &flow).expect("segments");
             let iou = min_iou(&prediction, &pair.truth().part_p);
@@ -85,7 +87,7 @@ fn degenerate_inputs_give_a_valid_prediction_or_the_right_error() {
 #[test]
 fn results_depend_on_the_pair_not_on_the_call() {
     let pair = hinge();
-    let flow = corrupt_flow(&pair.truth().flow, 0.05, 0.10, 9);
+    let flow = corrupt_flow(pair.truth().flow.as_deref().expect("a flow"), 0.05, 0.10, 9);
     for segmenter in segmenters() {
         let a = segmenter.segment(pair.input(), &flow).expect("segments");
         let b = segmenter.segment(pair.input(), &flow).expect("segments");

@@ -78,14 +78,20 @@ mod tests {
     fn the_true_segments_score_perfectly() {
         let pair = hinge_pair("t", 6, 0.8);
         let (input, truth) = (pair.input(), pair.truth());
-        let prediction = complete_prediction(input, &truth.flow, &truth.part_p, true);
+        let prediction =
+            complete_prediction(input, truth.flow.as_deref().expect("a flow"), &truth.part_p, true);
         let mut scores = JointScores::default();
         scores.add(&pair, &prediction);
         assert_eq!(scores.joints, 1);
         assert_eq!(scores.type_accuracy(), 1.0);
         assert!(scores.axis_errors[0] < 0.1, "{:?}", scores.axis_errors);
         assert!(scores.pivot_distances[0] < 1e-3, "{:?}", scores.pivot_distances);
-        let one = complete_prediction(input, &truth.flow, &vec![0u8; truth.part_p.len()], true);
+        let one = complete_prediction(
+            input,
+            truth.flow.as_deref().expect("a flow"),
+            &vec![0u8; truth.part_p.len()],
+            true,
+        );
         let mut none = JointScores::default();
         none.add(&pair, &one);
         assert_eq!((none.joints, none.type_correct), (1, 0));

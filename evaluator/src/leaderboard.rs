@@ -22,6 +22,9 @@ use pairs::atomic::replace_file;
 pub struct Scored<'a> {
     /// The dataset's name.
     pub dataset: &'a str,
+    /// Whether the dataset's pairs are cross-instance (no true flow): its rows stay off the
+    /// flow board.
+    pub cross_instance: bool,
     /// The row.
     pub entry: &'a Entry,
     /// Its results.
@@ -106,8 +109,8 @@ const SUMMED: [(&str, Field); 25] = [
 ];
 
 /// The per-pair frame of the runs that `keep` selects.
-fn pairs_frame(runs: &[Scored], keep: impl Fn(Board) -> bool) -> Result<DataFrame, EvalError> {
-    let runs: Vec<&Scored> = runs.iter().filter(|r| keep(r.entry.board)).collect();
+fn pairs_frame(runs: &[Scored], keep: impl Fn(&Scored) -> bool) -> Result<DataFrame, EvalError> {
+    let runs: Vec<&Scored> = runs.iter().filter(|r| keep(r)).collect();
     let mut keys: [Vec<String>; 6] = Default::default();
     let mut columns: Vec<Vec<Option<f64>>> = vec![Vec::new(); SUMMED.len() + PCC_THRESHOLDS];
     for run in runs {
@@ -329,8 +332,10 @@ pub fn row_lines(reports: &Path, row: &str) -> Vec<String> {
 impl Leaderboards {
     /// Builds the three tables from every run.
     pub fn build(runs: &[Scored]) -> Result<Self, EvalError> {
-        let flow = summed(&pairs_frame(runs, |b| b != Board::Segmentation)?)?;
-        let seg_pairs = pairs_frame(runs, |b| b != Board::Flow)?;
+        let flow = summed(&pairs_frame(runs, |r| {
+            r.entry.board != Board::Segmentation && !r.cross_instance
+        })?)?;
+        let seg_pairs = pairs_frame(runs, |r| r.entry.board != Board::Flow)?;
         let seg = summed(&seg_pairs)?;
         let (flow, curves) = flow_board(&flow)?;
         let mut by_category = breakdown_board(&seg_pairs, "category")?;

@@ -8,8 +8,10 @@
 //! are the full iterative pipeline (`net-iter`); its Table 4 "1 iter" column is our single
 //! pass (`net`) and its "9iter" column `net-iter`; its segmentation baselines (Table 2) ran on
 //! its network's final flow, so they face our `@net-iter-flow` rows; FPFH matching stands in
-//! for its learned-descriptor (3DMatch) row. Rows with no counterpart (3DFlow, LMVCNN, Shao
-//! et al., the real-scan sets, the 2- and 5-iteration columns) are quoted without one.
+//! for its learned-descriptor (3DMatch) row. Its RF2P set (Table 2's "RF2S": a CAD model
+//! to a real scan of another object) is quoted beside our synthetic XF2P rows, marked as
+//! measured on real scans. Rows with no counterpart (3DFlow, LMVCNN, Shao et al., the RS2S
+//! real scans, the 2- and 5-iteration columns) are quoted without one.
 
 /// The metric of a figure.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -55,6 +57,10 @@ pub struct PaperFigure {
     pub table: u8,
     /// The dataset, by our name where we have it (`sf2f`, `sf2p`, `sp2p`), else the paper's.
     pub dataset: &'static str,
+    /// Our dataset whose rows the figure is quoted beside when the paper's set is not one of
+    /// ours: the paper's RF2P (a CAD model to a real scan of another object; "RF2S" in its
+    /// Table 2) beside our synthetic XF2P, marked as measured on real scans.
+    pub beside: Option<&'static str>,
     /// The paper's name for the row (and column, for Table 4).
     pub paper_row: &'static str,
     /// Our counterpart row, if any.
@@ -84,6 +90,7 @@ const fn t1(
     PaperFigure {
         table: 1,
         dataset,
+        beside: None,
         paper_row,
         row,
         metric: Metric::Epe,
@@ -108,11 +115,26 @@ const fn t2(
     PaperFigure {
         table: 2,
         dataset,
+        beside: None,
         paper_row: column,
         row,
         metric,
         value,
         tex: TexCell { label: T2, row: tex_row, column, part: Some(part), percent: true },
+    }
+}
+
+/// Table 2's RF2P row ("RF2S"): a half of an `RI/IoU` cell, quoted beside our XF2P row
+/// `row` (the same protocol on synthetic cross-instance pairs).
+const fn t2_rf2p(
+    column: &'static str,
+    row: &'static str,
+    metric: Metric,
+    value: f64,
+) -> PaperFigure {
+    PaperFigure {
+        beside: Some("xf2p"),
+        ..t2("rf2s (real scans)", "RF2S", column, Some(row), metric, value)
     }
 }
 
@@ -129,6 +151,7 @@ const fn t4(
     PaperFigure {
         table: 4,
         dataset,
+        beside: None,
         paper_row,
         row,
         metric,
@@ -149,6 +172,7 @@ const fn t5(
     PaperFigure {
         table: 5,
         dataset: "sp2p",
+        beside: None,
         paper_row,
         row,
         metric,
@@ -208,16 +232,16 @@ pub const FIGURES: &[PaperFigure] = &[
     t2("rs2s (real scans)", "RS2S", "NRR", None, Iou, 0.655),
     t2("rs2s (real scans)", "RS2S", "Ours", None, Ri, 0.883),
     t2("rs2s (real scans)", "RS2S", "Ours", None, Iou, 0.835),
-    t2("rf2s (real scans)", "RF2S", "SeqRANSAC", None, Ri, 0.587),
-    t2("rf2s (real scans)", "RF2S", "SeqRANSAC", None, Iou, 0.442),
-    t2("rf2s (real scans)", "RF2S", "SC", None, Ri, 0.719),
-    t2("rf2s (real scans)", "RF2S", "SC", None, Iou, 0.536),
-    t2("rf2s (real scans)", "RF2S", "JLC", None, Ri, 0.727),
-    t2("rf2s (real scans)", "RF2S", "JLC", None, Iou, 0.584),
-    t2("rf2s (real scans)", "RF2S", "NRR", None, Ri, 0.728),
-    t2("rf2s (real scans)", "RF2S", "NRR", None, Iou, 0.547),
-    t2("rf2s (real scans)", "RF2S", "Ours", None, Ri, 0.876),
-    t2("rf2s (real scans)", "RF2S", "Ours", None, Iou, 0.818),
+    t2_rf2p("SeqRANSAC", "seqransac@net-iter-flow", Ri, 0.587),
+    t2_rf2p("SeqRANSAC", "seqransac@net-iter-flow", Iou, 0.442),
+    t2_rf2p("SC", "sc@net-iter-flow", Ri, 0.719),
+    t2_rf2p("SC", "sc@net-iter-flow", Iou, 0.536),
+    t2_rf2p("JLC", "jlc@net-iter-flow", Ri, 0.727),
+    t2_rf2p("JLC", "jlc@net-iter-flow", Iou, 0.584),
+    t2_rf2p("NRR", "nrr", Ri, 0.728),
+    t2_rf2p("NRR", "nrr", Iou, 0.547),
+    t2_rf2p("Ours", "net-iter", Ri, 0.876),
+    t2_rf2p("Ours", "net-iter", Iou, 0.818),
     // Table 4: iterations of the full procedure.
     t4("sf2f", "SF2F EPE (Corrs)", "1 iter", "Ours, 1 iteration", NET, Epe, 0.0377),
     t4("sf2f", "SF2F EPE (Corrs)", "2iter", "Ours, 2 iterations", None, Epe, 0.0283),
@@ -252,11 +276,13 @@ pub const FIGURES: &[PaperFigure] = &[
     t5("Ours", "IoU (Seg)", "Ours (full pipeline)", NET_ITER, Iou, 0.756),
 ];
 
-/// The paper's figures of `metric` for our `row` on `dataset`, in table order.
+/// The paper's figures of `metric` for our `row` on `dataset` (or quoted beside it), in
+/// table order.
 pub fn figures_for(dataset: &str, row: &str, metric: Metric) -> Vec<&'static PaperFigure> {
     FIGURES
         .iter()
-        .filter(|f| f.dataset == dataset && f.row == Some(row) && f.metric == metric)
+        .filter(|f| f.dataset == dataset || f.beside == Some(dataset))
+        .filter(|f| f.row == Some(row) && f.metric == metric)
         .collect()
 }
 
@@ -380,6 +406,12 @@ mod tests {
             .collect();
         assert_eq!(sp2p, [(5, 0.0369)]);
         assert!(figures_for("sf2f", "seqransac@net-flow", Metric::Ri).is_empty());
+        // RF2P's real scans are quoted beside XF2P, and nowhere else.
+        let rf2p = figures_for("xf2p", "net-iter", Metric::Iou);
+        assert_eq!(rf2p.len(), 1);
+        assert_eq!((rf2p[0].value, rf2p[0].tex.row), (0.818, "RF2S"));
+        assert!(figures_for("xf2f", "net-iter", Metric::Iou).is_empty());
+        assert_eq!(figures_for("xf2p", "nrr", Metric::Ri)[0].value, 0.728);
         assert_eq!(figures_for("sf2f", "seqransac@net-iter-flow", Metric::Ri)[0].value, 0.602);
     }
 

@@ -158,7 +158,7 @@ pub fn evaluate(
                 .collect(),
         };
         for (e, entry) in entries.iter().enumerate() {
-            if !entry.runs_on(&dataset.name) {
+            if !entry.runs_on(&dataset.name, dataset.cross_instance) {
                 continue;
             }
             // An external row is scored by `evaluator score`; other runs take it from the
@@ -184,7 +184,12 @@ pub fn evaluate(
     }
     let scored: Vec<Scored> = results
         .iter()
-        .map(|(d, e, result)| Scored { dataset: &loaded[*d].0.name, entry: &entries[*e], result })
+        .map(|(d, e, result)| Scored {
+            dataset: &loaded[*d].0.name,
+            cross_instance: loaded[*d].0.cross_instance,
+            entry: &entries[*e],
+            result,
+        })
         .collect();
     let failed = scored.iter().map(|s| s.result.rows.iter().filter(|r| !r.scored()).count()).sum();
     std::fs::create_dir_all(&reports)
@@ -198,7 +203,7 @@ pub fn evaluate(
         sweeps.into_iter().filter(|s| scored.iter().any(|r| r.entry.name == s.row)).collect();
     write_report(&reports, &boards, &gallery, &sweeps)?;
     let (mut iterations, mut iteration_joints) = (Vec::new(), Vec::new());
-    for s in scored.iter().filter(|s| s.entry.name == ITERATIVE_ROW) {
+    for s in scored.iter().filter(|s| s.entry.name == ITERATIVE_ROW && !s.cross_instance) {
         if let Some(passes) = &s.result.passes {
             let (rows, joints) = iteration_table(s.dataset, passes);
             iterations.extend(rows);

@@ -41,7 +41,9 @@ mod tests {
         // 2 * C(16,2) = 240 inside a part agree, the 256 across parts do not: RI = 240/496.
         // Part 0 matches the segment with IoU 16/32, part 1 is left unmatched (0).
         let pair = hinge_pair("toy", 4, 0.8);
-        let prediction = OnePart.segment(pair.input(), &pair.truth().flow).expect("segments");
+        let prediction = OnePart
+            .segment(pair.input(), pair.truth().flow.as_deref().expect("a flow"))
+            .expect("segments");
         let score = score_pair(&prediction, pair.input(), pair.truth()).expect("scores");
         assert!((score.p.rand_index - 240.0 / 496.0).abs() < 1e-12);
         assert!((score.p.iou_sum / f64::from(score.parts) - 0.25).abs() < 1e-12);
@@ -54,7 +56,9 @@ mod tests {
     #[test]
     fn one_part_refuses_a_flow_of_the_wrong_length() {
         let pair = hinge_pair("toy", 4, 0.8);
-        let err = OnePart.segment(pair.input(), &pair.truth().flow[1..]).expect_err("refused");
+        let err = OnePart
+            .segment(pair.input(), &pair.truth().flow.as_deref().expect("a flow")[1..])
+            .expect_err("refused");
         assert!(err.to_string().contains("31 vectors for 32 points"), "{err}");
     }
 }

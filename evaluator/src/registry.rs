@@ -109,10 +109,12 @@ impl Entry {
 
     /// Whether the row has results on `dataset`: every row but an external one without a
     /// prediction file for it.
-    pub fn runs_on(&self, dataset: &str) -> bool {
+    pub fn runs_on(&self, dataset: &str, cross_instance: bool) -> bool {
         match &self.runner {
             Runner::External(files) => files.files.contains_key(dataset),
-            _ => true,
+            _ if !cross_instance => true,
+            Runner::Segmenter { flow: FlowSource::GroundTruth, .. } => false,
+            _ => self.board != Board::Flow,
         }
     }
 

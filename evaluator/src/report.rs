@@ -72,7 +72,9 @@ fn quoted(dataset: &str, row: &str, metrics: &[Metric]) -> String {
                     )
                 })
                 .collect();
-            format!("{} (Table {t})", values.join(", "))
+            let real = figures.iter().any(|f| f.table == t && f.beside == Some(dataset));
+            let on = if real { ", RF2P: real scans of other objects" } else { "" };
+            format!("{} (Table {t}{on})", values.join(", "))
         })
         .collect();
     if groups.is_empty() {
@@ -125,9 +127,14 @@ pub fn write_report(
          the matched parts only; `matched_per_pair` says how many there are. Failed pairs are \
          left out of the means and counted in `failed`. Joints are in `joints.csv`, every \
          row per category and per joint type in `leaderboard_by_category.csv`.\n\n\
+         `xf2f` and `xf2p` are cross-instance sets: P and Q are two different objects of one \
+         category (full to full, full to a scan), parts matched by their role; no flow is \
+         defined between two shapes, so these sets are on the segmentation board only, \
+         without the rows that need the true flow.\n\n\
          The last column quotes the **paper's** numbers (Yi et al. 2018) for the same row on \
          the paper's own data, for orientation only: our datasets are generated, not the \
-         paper's.\n\n## Flow\n\n",
+         paper's. Beside `xf2p` it quotes the paper's RF2P (a CAD model to a real scan of \
+         another object), measured on real scans.\n\n## Flow\n\n",
     );
     let external = [&boards.flow, &boards.seg].iter().any(|frame| {
         cells(frame).iter().any(|row| row.get(2).map(String::as_str) == Some(EXTERNAL))
@@ -210,8 +217,8 @@ pub fn write_report(
          2, 4 and 5, with the row of ours that follows the same protocol where there is one: \
          the paper's \"Ours\" in Tables 1, 2 and 5 is its full iterative pipeline (`net-iter`), \
          Table 4's first column its single pass (`net`); its segmentation baselines ran on its \
-         network's final flow (`@net-iter-flow`). RI and IoU as fractions (Table 2 prints \
-         percent).\n\n",
+         network's final flow (`@net-iter-flow`); its RF2P row (\"RF2S\") faces our `xf2p` \
+         rows. RI and IoU as fractions (Table 2 prints percent).\n\n",
     );
     let head: Vec<String> =
         ["table", "dataset", "paper row", "metric", "value", "our row"].map(String::from).into();

@@ -76,7 +76,9 @@ impl FlowCache {
             .pairs
             .par_iter()
             .map(|pair| match source {
-                FlowSource::GroundTruth => Ok(pair.truth().flow.clone()),
+                FlowSource::GroundTruth => pair.truth().flow.clone().ok_or_else(|| {
+                    format!("{} has no true flow (a cross-instance pair)", pair.id())
+                }),
                 FlowSource::Method(m) => {
                     guarded(|| m.predict(pair.input()).map_err(|e| e.to_string()))
                         .and_then(|p| p.flow.ok_or_else(|| format!("{} reports no flow", m.name())))
@@ -124,7 +126,7 @@ pub fn predict_pair(
         Runner::Oracle => {
             let truth = pair.truth();
             Ok(Prediction {
-                flow: Some(truth.flow.clone()),
+                flow: truth.flow.clone(),
                 segments_p: pairs::parts::part_segments(&truth.part_p),
                 segments_q: pairs::parts::part_segments(&truth.part_q),
                 motions: truth.motions.clone(),

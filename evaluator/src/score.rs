@@ -142,13 +142,14 @@ pub fn score_pair(
     truth: &GroundTruth,
 ) -> Result<PairScore, Malformed> {
     check_prediction(prediction, input)?;
-    let flow = match &prediction.flow {
-        Some(flow) => {
-            let errors = end_point_errors(flow, &truth.flow)?;
+    // A cross-instance pair has no true flow: its flow is not scored (never against zero).
+    let flow = match (&prediction.flow, &truth.flow) {
+        (Some(flow), Some(true_flow)) => {
+            let errors = end_point_errors(flow, true_flow)?;
             let epe = errors.iter().sum::<f64>() / errors.len() as f64;
             Some(FlowScore { epe, pcc: pcc(&errors) })
         }
-        None => None,
+        _ => None,
     };
     let matching = matched_iou(&prediction.segments_p, &truth.part_p)?;
     let p = SegmentScore {
@@ -202,7 +203,7 @@ mod tests {
     fn truth_prediction(pair: &pairs::Pair) -> Prediction {
         let t = pair.truth();
         Prediction {
-            flow: Some(t.flow.clone()),
+            flow: t.flow.clone(),
             segments_p: pairs::parts::part_segments(&t.part_p),
             segments_q: pairs::parts::part_segments(&t.part_q),
             motions: t.motions.clone(),

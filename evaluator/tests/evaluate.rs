@@ -361,3 +361,58 @@ fn the_iterative_row_runs_each_pass_once_and_its_board_comes_from_the_cache() {
     assert_eq!((rerun.fresh, calls()), (1, 8));
     assert_eq!(read(&reports.join("iterations.csv")), table);
 }
+
+/// A flow of zeros (P stays where it is), on the flow board.
+struct Still;
+
+impl Method for Still {
+    fn name(&self) -> &str {
+        "still"
+    }
+
+    fn predict(&self, input: &PairInput) -> Result<Prediction, MethodError> {
+        let n = input.p.len();
+        Ok(Prediction {
+            flow: Some(vec![Vector3::zeros(); n]),
+            segments_p: vec![0; n],
+            ..Prediction::default()
+        })
+    }
+}
+
+#[test]
+fn a_cross_instance_set_is_on_the_segmentation_board_only_and_skips_true_flow_rows() {
+    let dir = tempfile::tempdir().expect("a temporary folder");
+    let config = GeneratorConfig {
+        kind: pairs::PairKind::Xf2f,
+        categories: vec!["laptop".into(), "cabinet".into()],
+        ..spec().config.expect("a generated spec")
+    };
+    let cross = DatasetSpec::generated("cross", config);
+    let mut registry = registry("one-part v1");
+    let still: Arc<dyn Method> = Arc::new(Still);
+    registry.method(still.clone(), Board::Flow, "still v1");
+    registry.combine(Arc::new(OnePart), FlowSource::Method(still), "one-part v1", None);
+    let summary =
+        evaluate(&registry, &[spec(), cross], &options(dir.path()), &NoProgress).expect("runs");
+    // Five rows on the single-object set; on the cross-instance one, neither the flow row
+    // nor the segmenter on the true flow.
+    assert_eq!(summary.fresh, 5 + 3);
+    let reports = dir.path().join("reports");
+    let seg = rows(&reports.join("leaderboard_seg.csv"));
+    let on = |table: &[std::collections::HashMap<String, String>], dataset: &str| {
+        let mut names: Vec<String> =
+            table.iter().filter(|r| r["dataset"] == dataset).map(|r| r["method"].clone()).collect();
+        names.sort();
+        names
+    };
+    assert_eq!(on(&seg, "cross"), ["broken", "gt", "one-part@still-flow"]);
+    let flow = rows(&reports.join("leaderboard_flow.csv"));
+    assert!(on(&flow, "cross").is_empty(), "cross-instance rows on the flow board");
+    assert!(!on(&flow, "tiny").is_empty());
+    let gt = seg.iter().find(|r| r["dataset"] == "cross" && r["method"] == "gt").expect("gt");
+    assert_eq!((gt["ri"].as_str(), gt["iou"].as_str()), ("1.0000", "1.0000"));
+    // Per pair, the flow columns are empty, never zero.
+    let runs = rows(&reports.join("runs/cross/gt.csv"));
+    assert!(!runs.is_empty() && runs.iter().all(|r| r["epe"].is_empty()), "{runs:?}");
+}

@@ -236,7 +236,12 @@ fn means_leave_failed_pairs_out_and_failed_counts_them() {
     let scored: Vec<Scored> = runs
         .iter()
         .zip(&results)
-        .map(|((dataset, entry, _), result)| Scored { dataset, entry, result })
+        .map(|((dataset, entry, _), result)| Scored {
+            dataset,
+            cross_instance: false,
+            entry,
+            result,
+        })
         .collect();
     let boards = Leaderboards::build(&scored).expect("the leaderboards build");
 

@@ -62,6 +62,7 @@ fn dataset(name: &str, split: Split, angle: f32) -> LoadedDataset {
         pairs,
         content_hash: format!("{name}-hash"),
         split: Some(split),
+        cross_instance: false,
     }
 }
 

@@ -23,7 +23,7 @@ use crate::inference::labels::{argmax, segment_pair, HardLabelParams};
 use crate::network::predict::{interpolate, LinearMotion};
 use crate::network::sampling::farthest_point_sampling;
 use crate::network::PartInductionNet;
-use crate::train::validation::{support_iou, ScoreError};
+use crate::train::validation::{support_iou, true_flow, ScoreError};
 
 /// Settings of [`diagnose`].
 #[derive(Debug, Clone, PartialEq)]
@@ -172,7 +172,7 @@ fn fitted_hypotheses(
 ) -> Result<Vec<LinearMotion>, DiagnoseError> {
     let truth = pair.truth();
     let p = &pair.input().p.points;
-    let moved: Vec<Point3> = p.iter().zip(&truth.flow).map(|(x, f)| x + f).collect();
+    let moved: Vec<Point3> = p.iter().zip(true_flow(pair)?).map(|(x, f)| x + f).collect();
     let k = truth.part_p.iter().copied().max().map_or(0, |m| m as usize + 1);
     let mut fits = Vec::with_capacity(k);
     for part in 0..k {
@@ -237,10 +237,11 @@ pub fn diagnose(
         let network = |source| ScoreError::Predict { pair: id(), source };
         let metric = |source| ScoreError::Metric { pair: id(), source };
         let (input, truth) = (pair.input(), pair.truth());
+        let truth_flow = true_flow(pair)?;
         let points = &input.p.points;
         let mut row = 0;
         let add_epe = |sums: &mut [Sums], row: &mut usize, flow: &[Vector3]| {
-            let e = epe(flow, &truth.flow).map_err(metric)?;
+            let e = epe(flow, truth_flow).map_err(metric)?;
             sums[*row].epe += e;
             sums[*row].epe_n += 1;
             *row += 1;
@@ -257,7 +258,7 @@ pub fn diagnose(
             let sub: Vec<[f32; 3]> = subset.iter().map(|&i| plain[i]).collect();
             let values: Vec<f32> = subset
                 .iter()
-                .flat_map(|&i| [truth.flow[i].x, truth.flow[i].y, truth.flow[i].z])
+                .flat_map(|&i| [truth_flow[i].x, truth_flow[i].y, truth_flow[i].z])
                 .collect();
             let back = interpolate(&plain, &sub, &values, 3).map_err(network)?;
             let back: Vec<Vector3> =
@@ -267,7 +268,7 @@ pub fn diagnose(
         // Segmentation on the true flow.
         let add_pass = |sums: &mut [Sums], row: &mut usize, support: Option<(&[f32], f64)>| {
             let probs = net
-                .soft_segments_given(input, &truth.flow, support.map(|(s, _)| s))
+                .soft_segments_given(input, truth_flow, support.map(|(s, _)| s))
                 .map_err(network)?;
             let matching = matched_iou(&argmax(&probs), &truth.part_p).map_err(metric)?;
             let r = &mut sums[*row];
@@ -280,15 +281,15 @@ pub fn diagnose(
             *row += 1;
             Ok::<_, DiagnoseError>(())
         };
-        let (subset, probs) = net.supports(input, &truth.flow).map_err(network)?;
+        let (subset, probs) = net.supports(input, truth_flow).map_err(network)?;
         let parts_s: Vec<PartId> = subset.iter().map(|&i| truth.part_p[i]).collect();
         let own = support_iou(&probs, &parts_s);
         sums[row].support += own;
         sums[row].support_n += 1;
         add_pass(&mut sums, &mut row, None)?;
         let x: Vec<Point3> = subset.iter().map(|&i| points[i]).collect();
-        let f: Vec<Vector3> = subset.iter().map(|&i| truth.flow[i]).collect();
-        let (_, own_motions) = net.hypotheses(input, &truth.flow).map_err(network)?;
+        let f: Vec<Vector3> = subset.iter().map(|&i| truth_flow[i]).collect();
+        let (_, own_motions) = net.hypotheses(input, truth_flow).map_err(network)?;
         for motions in [
             own_motions,
             fitted_hypotheses(pair, &subset, false)?,
@@ -324,7 +325,7 @@ pub fn diagnose(
                 .collect();
             for labels in [
                 argmax(&probs),
-                segment_pair(points, &input.q.points, &probs, &truth.flow, &params.hard).labels_p,
+                segment_pair(points, &input.q.points, &probs, truth_flow, &params.hard).labels_p,
             ] {
                 let matching = matched_iou(&labels, &truth.part_p).map_err(metric)?;
                 sums[row].iou += matching.iou.iter().sum::<f64>();

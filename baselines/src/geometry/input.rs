@@ -100,7 +100,7 @@ mod tests {
     fn bad_inputs_are_named() {
         let pair = hinge_pair("t", 3, 0.5);
         let mut input = pair.input().clone();
-        let flow = pair.truth().flow.clone();
+        let flow = pair.truth().flow.clone().expect("a flow");
         assert_eq!(check_flow(&input, &flow), Ok(()));
         assert!(matches!(check_flow(&input, &flow[1..]), Err(InputError::FlowLength { .. })));
         let mut nan_flow = flow.clone();

@@ -58,7 +58,8 @@ pub fn lamp(axis: Vector3, angle: Real) -> Pair {
 /// EPE of a flow method's prediction against the pair's true flow.
 pub fn epe_to_truth(pair: &Pair, prediction: &Prediction) -> f64 {
     let flow = prediction.flow.as_ref().expect("a flow method reports its flow");
-    epe(flow, &pair.truth().flow).expect("one finite vector per point of P")
+    epe(flow, pair.truth().flow.as_deref().expect("a flow"))
+        .expect("one finite vector per point of P")
 }
 
 /// A standard normal sample (Box-Muller), so the tests need no distribution crate.

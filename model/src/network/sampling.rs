@@ -22,6 +22,9 @@ pub enum SamplingError {
     /// A point is NaN or infinite.
     #[error("point {0} is not finite")]
     NotFinite(usize),
+    /// A training pair has no true flow: a cross-instance pair (XF2F, XF2P).
+    #[error("pair {0} has no true flow (a cross-instance pair); training needs SF2F, SF2P or SP2P pairs")]
+    NoFlow(String),
 }
 
 use pairs::math::Point3;

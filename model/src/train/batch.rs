@@ -54,8 +54,10 @@ impl TrainingBatch {
         for (pair, rotation) in pairs.iter().zip(rotations) {
             let prep = Prepared::new(pair.input(), m, rotation)?;
             let truth = pair.truth();
+            let true_flow =
+                truth.flow.as_deref().ok_or_else(|| SamplingError::NoFlow(pair.id().into()))?;
             for &i in &prep.p_subset {
-                let f: Vector3 = rotation * truth.flow[i];
+                let f: Vector3 = rotation * true_flow[i];
                 flow.extend([f.x, f.y, f.z]);
                 let moved = [prep.p[i][0] + f.x, prep.p[i][1] + f.y, prep.p[i][2] + f.z];
                 let target = truth.corr_mask[i]

@@ -8,6 +8,7 @@
 use generator::categories::Split;
 use generator::config::GeneratorConfig;
 use generator::generate::{object_pairs_with, GenerateError, Variant};
+use pairs::math::Vector3;
 use pairs::metrics::{epe, matched_iou, rand_index};
 use pairs::PairKind;
 use pairs::{Pair, PartId, Prediction};
@@ -94,6 +95,22 @@ pub enum ScoreError {
     /// The inference procedure failed on a pair (the error names the pair).
     #[error(transparent)]
     Procedure(#[from] pairs::MethodError),
+    /// A cross-instance pair (XF2F, XF2P) has no true flow to score or train on.
+    #[error("pair {pair}: a {kind} pair has no true flow (two different objects); validation, training and diagnosis need SF2F, SF2P or SP2P pairs")]
+    NoFlow {
+        /// The pair's id.
+        pair: String,
+        /// Its kind.
+        kind: &'static str,
+    },
+}
+
+/// The pair's true flow, or [`ScoreError::NoFlow`] for a cross-instance pair.
+pub fn true_flow(pair: &Pair) -> Result<&[Vector3], ScoreError> {
+    pair.truth().flow.as_deref().ok_or_else(|| ScoreError::NoFlow {
+        pair: pair.id().to_owned(),
+        kind: pair.input().kind.as_str(),
+    })
 }
 
 /// One pair's scores, the terms that [`Scores`] averages.
@@ -156,7 +173,7 @@ pub fn score_pairs(net: &PartInductionNet, pairs: &[Pair]) -> Result<Vec<PairSco
                 .map_err(|source| ScoreError::Predict { pair: id(), source })?;
             let truth = pair.truth();
             let (subset, probs) = net
-                .supports(pair.input(), &truth.flow)
+                .supports(pair.input(), true_flow(pair)?)
                 .map_err(|source| ScoreError::Predict { pair: id(), source })?;
             let parts_s: Vec<PartId> = subset.iter().map(|&i| truth.part_p[i]).collect();
             PairScores::of(pair, &prediction, support_iou(&probs, &parts_s))
@@ -173,7 +190,7 @@ impl PairScores {
         let flow = prediction.flow.as_deref().unwrap_or_default();
         let matching = matched_iou(&prediction.segments_p, &truth.part_p).map_err(metric)?;
         Ok(Self {
-            epe: epe(flow, &truth.flow).map_err(metric)?,
+            epe: epe(flow, true_flow(pair)?).map_err(metric)?,
             rand_index: rand_index(&prediction.segments_p, &truth.part_p).map_err(metric)?,
             iou_sum: matching.iou.iter().sum::<f64>(),
             parts: matching.iou.len(),

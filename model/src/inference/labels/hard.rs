@@ -261,7 +261,8 @@ mod tests {
         let params = HardLabelParams::default();
         let graph = KnnGraph::build(&input.p.points, params.neighbours, params.sigma);
         let before = argmax(&probs);
-        let after = hard_labels(&input.p.points, &probs, &truth.flow, &params);
+        let after =
+            hard_labels(&input.p.points, &probs, truth.flow.as_deref().expect("a flow"), &params);
         let count = |l: &[u32]| {
             let mut v = l.to_vec();
             v.sort_unstable();
@@ -270,7 +271,13 @@ mod tests {
         };
         assert!(count(&after) <= count(&before));
         assert!(graph.fragments(&after).1 < graph.fragments(&before).1);
-        let seg = segment_pair(&input.p.points, &input.q.points, &probs, &truth.flow, &params);
+        let seg = segment_pair(
+            &input.p.points,
+            &input.q.points,
+            &probs,
+            truth.flow.as_deref().expect("a flow"),
+            &params,
+        );
         // Points at the hinge sit closer to the other part than to their own rows, so the
         // smoothness term may move that one column: compare by agreement, not equality.
         assert!(agreement(&seg.labels_p, &truth.part_p) > 0.95);

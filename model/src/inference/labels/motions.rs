@@ -47,7 +47,13 @@ mod tests {
         let (input, truth) = (pair.input(), pair.truth());
         let labels = pairs::parts::part_segments(&truth.part_p);
         let weights = vec![1.0; labels.len()];
-        let fit = fit_motions_shared_scale(&input.p.points, &truth.flow, &labels, &weights, 3);
+        let fit = fit_motions_shared_scale(
+            &input.p.points,
+            truth.flow.as_deref().expect("a flow"),
+            &labels,
+            &weights,
+            3,
+        );
         for (m, gt) in fit.iter().zip(&truth.motions) {
             assert!((m.rotation - gt.rotation).norm() < 1e-4);
             assert!((m.translation - gt.translation).norm() < 1e-4);
