@@ -35,7 +35,9 @@ PAIR_SCHEMA = "part_induction.Pair"
 PAIR_SCHEMA_VERSION = 2
 """Record layout written by the generator; readers accept 1 to this."""
 OLDEST_PAIR_SCHEMA_VERSION = 1
-KINDS = ("SF2F", "SF2P", "SP2P")
+KINDS = ("SF2F", "SF2P", "SP2P", "XF2F", "XF2P")
+#: Kinds whose P and Q are two different objects of one category: no flow, no correspondences.
+CROSS_INSTANCE_KINDS = ("XF2F", "XF2P")
 IMAGE_KINDS = ("depth", "labels", "colour")
 
 PathLike = Union[str, "os.PathLike[str]"]
@@ -166,10 +168,13 @@ class Pair:
         The scale shared by all part motions.
     motions : Motions
         K part motions, P's normalised frame to Q's.
-    flow : np.ndarray
-        float32, shape [N_p, 3]: ``motions[part_p[i]](p_i) - p_i``, Q's normalised units.
+    flow : np.ndarray or None
+        float32, shape [N_p, 3]: ``motions[part_p[i]](p_i) - p_i``, Q's normalised units;
+        None for a cross-instance pair (``XF2F``, ``XF2P``: P and Q are two different objects
+        of one category, and no flow is defined between two shapes).
     corr_mask : np.ndarray
-        bool, shape [N_p]: whether each moved point of P is present in Q.
+        bool, shape [N_p]: whether each moved point of P is present in Q (all False for a
+        cross-instance pair).
     corr_index : np.ndarray
         int32, shape [N_p]: index of the nearest point of Q of the same part to the moved
         point, -1 where ``corr_mask`` is False.
@@ -177,7 +182,8 @@ class Pair:
         One per joint that moves a part.
     provenance : dict
         ``category``, ``object_id``, ``articulation_p``, ``articulation_q``, ``seed``,
-        ``generator_version``; from schema version 2 also ``joints_p`` and ``joints_q``
+        ``generator_version``; ``seed_q`` for a cross-instance pair (Q's object is object
+        ``object_id`` of the dataset's config under that seed); from schema version 2 also ``joints_p`` and ``joints_q``
         (every joint of the object by name -> its value in P's / Q's state, radians or
         object units) and ``pose_p`` and ``pose_q`` (``{"rotation": 9 floats row-major,
         "translation": 3 floats}``: the object's rest frame, the exported URDF's ``base``
@@ -208,7 +214,7 @@ class Pair:
     num_parts: int
     scale: float
     motions: Motions
-    flow: np.ndarray
+    flow: Optional[np.ndarray]
     corr_mask: np.ndarray
     corr_index: np.ndarray
     joints: List[Joint]
@@ -413,7 +419,8 @@ def collate_numpy(pairs: Sequence[Pair]) -> Dict[str, Any]:
     dict
         ``id``, ``kind``: lists of str. ``p``, ``q``: float32 [B, N_p, 3], [B, N_q, 3];
         ``p_valid``, ``q_valid``: bool [B, N_p], [B, N_q], True on real points;
-        ``part_p``, ``part_q``: int64 [B, N_p], [B, N_q]; ``flow``: float32 [B, N_p, 3];
+        ``part_p``, ``part_q``: int64 [B, N_p], [B, N_q]; ``flow``: float32 [B, N_p, 3], or
+        None for a batch of cross-instance pairs (a batch mixing the two is refused);
         ``corr_mask``: bool [B, N_p]; ``corr_index``: int64 [B, N_p];
         ``p_centre``, ``q_centre``: float32 [B, 3]; ``p_scale``, ``q_scale``, ``scale``:
         float32 [B]; ``num_parts``: int64 [B]; ``rotations``: float32 [B, K, 3, 3] (identity
@@ -431,7 +438,17 @@ def collate_numpy(pairs: Sequence[Pair]) -> Dict[str, Any]:
     out["q"], out["q_valid"] = _pad([x.q for x in pairs], 0)
     out["part_p"], _ = _pad([x.part_p.astype(np.int64) for x in pairs], 0)
     out["part_q"], _ = _pad([x.part_q.astype(np.int64) for x in pairs], 0)
-    out["flow"], _ = _pad([x.flow for x in pairs], 0)
+    flows = [x.flow for x in pairs]
+    if all(f is None for f in flows):
+        out["flow"] = None
+    elif any(f is None for f in flows):
+        without = next(x.id for x in pairs if x.flow is None)
+        raise ValueError(
+            f"collate_numpy: pair {without!r} has no flow (cross-instance) but others do; "
+            "batch cross-instance pairs on their own"
+        )
+    else:
+        out["flow"], _ = _pad(flows, 0)
     out["corr_mask"], _ = _pad([x.corr_mask for x in pairs], False)
     out["corr_index"], _ = _pad([x.corr_index.astype(np.int64) for x in pairs], -1)
     out["p_centre"] = np.stack([x.p_centre for x in pairs]).astype(np.float32)
@@ -480,7 +497,7 @@ def subsample_pair(pair: Pair, points: int, rng: np.random.Generator) -> Pair:
         q=pair.q[take_q],
         part_p=pair.part_p[take_p],
         part_q=pair.part_q[take_q],
-        flow=pair.flow[take_p],
+        flow=None if pair.flow is None else pair.flow[take_p],
         corr_mask=corr_index >= 0,
         corr_index=corr_index,
     )
@@ -555,7 +572,12 @@ def decode_pair(record: Dict[str, Any], where: str) -> Pair:
             c.fail(field, f"entry {bad[0]} holds part {parts[bad[0]]}, but the pair has {k} parts")
     scale = c.number(record, "scale")
     motions = c.motions(record, k, scale)
-    flow = c.array(record, "flow", np.float32, 3, n_p)
+    if kind in CROSS_INSTANCE_KINDS:
+        if "flow" in record:
+            c.fail("flow", f"present, but a {kind} pair has none (two different objects)")
+        flow = None
+    else:
+        flow = c.array(record, "flow", np.float32, 3, n_p)
     mask = c.array(record, "corr_mask", np.uint8, 1, n_p)
     if mask.max() > 1:
         bad = np.flatnonzero(mask > 1)

@@ -52,6 +52,13 @@ def sp2p_dir(tmp_path_factory: pytest.TempPathFactory) -> Path:
 
 
 @pytest.fixture(scope="session")
+def xf2p_dir(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """10 XF2P pairs (2 objects, each against a second instance of its category) of 64
+    points: no flow, Q scanned."""
+    return generate(tmp_path_factory.mktemp("data") / "py-xf2p", "xf2p", 2, 64)
+
+
+@pytest.fixture(scope="session")
 def rust_dump(tmp_path_factory: pytest.TempPathFactory) -> Callable[[Path], List[Dict[str, Any]]]:
     """Every field of every pair of a dataset as the Rust reader sees it."""
     cache: Dict[Path, List[Dict[str, Any]]] = {}

@@ -17,6 +17,7 @@ from mcap.stream_reader import StreamReader
 from mcap.writer import CompressionType, Writer
 
 from part_induction import DatasetError, Pair, open_dataset
+from part_induction.dataset import collate_numpy, subsample_pair
 
 
 def assert_floats(rust: Any, python: np.ndarray, what: str) -> None:
@@ -41,7 +42,10 @@ def assert_same_pair(rust: Dict[str, Any], pair: Pair) -> None:
     assert pair.motions.rotations.shape == (pair.num_parts, 3, 3)
     assert_floats(rust["rotations"], pair.motions.rotations, f"{what} rotations")
     assert_floats(rust["translations"], pair.motions.translations, f"{what} translations")
-    assert_floats(rust["flow"], pair.flow, f"{what} flow")
+    if rust["flow"] is None:
+        assert pair.flow is None, f"{what}: a flow where Rust reads none"
+    else:
+        assert_floats(rust["flow"], pair.flow, f"{what} flow")
     assert pair.corr_mask.dtype == bool and pair.corr_index.dtype == np.int32
     np.testing.assert_array_equal(pair.corr_mask, rust["corr_mask"])
     np.testing.assert_array_equal(pair.corr_index, rust["corr_index"])
@@ -62,7 +66,7 @@ def assert_same_pair(rust: Dict[str, Any], pair: Pair) -> None:
             assert_floats(expected[key], scan[key], f"{what} {side}.{key}")
 
 
-@pytest.mark.parametrize("name", ["sf2f_dir", "sp2p_dir"])
+@pytest.mark.parametrize("name", ["sf2f_dir", "sp2p_dir", "xf2p_dir"])
 def test_every_field_matches_the_rust_reader(
     name: str, request: pytest.FixtureRequest, rust_dump: Callable[[Path], Any]
 ) -> None:
@@ -74,7 +78,28 @@ def test_every_field_matches_the_rust_reader(
     for expected, pair in zip(rust, pairs):
         assert_same_pair(expected, pair)
     scanned = [p for p in pairs if p.scan_q is not None]
-    assert len(scanned) == (len(pairs) if name == "sp2p_dir" else 0)
+    assert len(scanned) == (0 if name == "sf2f_dir" else len(pairs))
+
+
+def test_a_cross_instance_pair_has_no_flow_and_two_seeds(xf2p_dir: Path) -> None:
+    pairs = list(open_dataset(xf2p_dir))
+    assert pairs and all(p.kind == "XF2P" for p in pairs)
+    for pair in pairs:
+        assert pair.flow is None
+        assert not pair.corr_mask.any() and (pair.corr_index == -1).all()
+        assert pair.provenance["seed_q"] != pair.provenance["seed"]
+    batch = collate_numpy(pairs[:3])
+    assert batch["flow"] is None and batch["p"].shape == (3, 64, 3)
+    small = subsample_pair(pairs[0], 32, np.random.default_rng(0))
+    assert small.flow is None and len(small.p) == 32
+
+
+def test_a_batch_mixing_cross_instance_and_single_object_pairs_is_refused(
+    sf2f_dir: Path, xf2p_dir: Path
+) -> None:
+    mixed = [next(iter(open_dataset(sf2f_dir))), next(iter(open_dataset(xf2p_dir)))]
+    with pytest.raises(ValueError, match="no flow"):
+        collate_numpy(mixed)
 
 
 def test_the_ground_truth_is_consistent(sp2p_dir: Path) -> None:
@@ -208,6 +233,8 @@ def test_disagreeing_lengths_name_the_message_and_field(sf2f_dir: Path, tmp_path
         (lambda r: dict(r, flow=struct.pack("<f", float("nan")) + r["flow"][4:]), "flow"),
         (lambda r: dict(r, p=dict(r["p"], points=r["p"]["points"][:-4])), "p.points"),
         (lambda r: {k: v for k, v in r.items() if k != "provenance"}, "provenance"),
+        (lambda r: {k: v for k, v in r.items() if k != "flow"}, "flow"),
+        (lambda r: dict(r, kind="XF2F"), "flow"),
     ],
 )
 def test_broken_fields_are_named(sf2f_dir: Path, tmp_path: Path, edit: Any, field: str) -> None:

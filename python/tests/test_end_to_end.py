@@ -53,6 +53,28 @@ def test_the_ground_truth_written_from_python_scores_perfectly(
 
 
 @pytest.mark.evaluator
+def test_a_cross_instance_set_is_scored_on_segmentation_only(
+    xf2p_dir: Path, tmp_path: Path, cargo: Callable[..., str]
+) -> None:
+    dataset = open_dataset(xf2p_dir)
+    predictions = tmp_path / "labels.mcap"
+    with PredictionWriter(predictions, "labels-py", dataset, method_version="test") as writer:
+        for pair in dataset:
+            # A flow is allowed, but there is no true flow to score it against.
+            writer.write(pair.id, pair.part_p, segments_q=pair.part_q, flow=np.zeros_like(pair.p))
+    reports = tmp_path / "reports"
+    score = ["score", "--dataset", str(xf2p_dir), "--predictions", str(predictions)]
+    score += ["--name", "labels-py", "--reports", str(reports)]
+    cargo("run", "-q", "-p", "evaluator", "--", *score)
+    assert rows(reports / "leaderboard_flow.csv", "labels-py") == []
+    (seg,) = rows(reports / "leaderboard_seg.csv", "labels-py")
+    assert float(seg["ri"]) == pytest.approx(1.0, abs=1e-6)
+    assert float(seg["iou"]) == pytest.approx(1.0, abs=1e-6)
+    assert float(seg["ri_q"]) == pytest.approx(1.0, abs=1e-6)
+    assert int(seg["pairs"]) == len(dataset) and int(seg["failed"]) == 0
+
+
+@pytest.mark.evaluator
 def test_predictions_written_by_the_evaluator_read_back(
     sf2f_dir: Path, tmp_path: Path, cargo: Callable[..., str]
 ) -> None:
