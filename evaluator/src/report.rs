@@ -127,6 +127,11 @@ pub fn write_report(
          the matched parts only; `matched_per_pair` says how many there are. Failed pairs are \
          left out of the means and counted in `failed`. Joints are in `joints.csv`, every \
          row per category and per joint type in `leaderboard_by_category.csv`.\n\n\
+         `net-iter` runs the paper's inference procedure (model/README.md). The authors' \
+         release adds three steps (a rigid alignment of each segment, per-segment \
+         sub-problems under geodesic attention masks, and snapping the final SF2F flow to \
+         Q); `model procedures` measured each with the shipped weights on 960 validation \
+         pairs and each lowered the IoU (model/TRAINING.md), so the row leaves them out.\n\n\
          `xf2f` and `xf2p` are cross-instance sets: P and Q are two different objects of one \
          category (full to full, full to a scan), parts matched by their role; no flow is \
          defined between two shapes, so these sets are on the segmentation board only, \

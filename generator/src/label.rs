@@ -106,27 +106,7 @@ pub fn ground_truth(
         )
         .collect();
     let corr_mask = corr_index.iter().map(|&i| i >= 0).collect();
-    let joints = object
-        .joints
-        .iter()
-        .enumerate()
-        .filter(|(_, j)| parts.of_link[j.child] != parts.of_link[j.parent])
-        .map(|(index, j)| {
-            let (pose_p, pose_q) = (&p.poses[j.parent], &q.poses[j.parent]);
-            JointTruth {
-                part: parts.of_link[j.child],
-                kind: j.kind,
-                // Joint axes are unit when built (`Joint::revolute`, `prismatic`), so this
-                // only removes the rotation's rounding; the fallback is never taken.
-                axis_p: pairs::math::unit_or(&(pose_p.rotation * j.axis), j.axis),
-                pivot_p: norm_p.apply(&(pose_p * j.pivot)),
-                axis_q: pairs::math::unit_or(&(pose_q.rotation * j.axis), j.axis),
-                pivot_q: norm_q.apply(&(pose_q * j.pivot)),
-                value_p: p.values[index],
-                value_q: q.values[index],
-            }
-        })
-        .collect();
+    let joints = joint_truths((object, object), p, q, parts);
     GroundTruth { part_p, part_q, motions, flow: Some(flow), corr_mask, corr_index, joints }
 }
 
@@ -203,7 +183,29 @@ pub fn cross_ground_truth(
     let part_p: Vec<PartId> = p.samples.iter().map(|s| parts.of_link[s.link]).collect();
     let part_q: Vec<PartId> = q.samples.iter().map(|s| parts.of_link[s.link]).collect();
     let n = part_p.len();
-    let joints = object_p
+    let joints = joint_truths((object_p, object_q), p, q, parts);
+    GroundTruth {
+        part_p,
+        part_q,
+        motions,
+        flow: None,
+        corr_mask: vec![false; n],
+        corr_index: vec![-1; n],
+        joints,
+    }
+}
+
+/// The joint of every moving part, in both objects (the same object for a pair of one
+/// object): its axis and pivot posed in each side's normalised frame, its value in each
+/// state.
+fn joint_truths(
+    (object_p, object_q): (&ArticulatedObject, &ArticulatedObject),
+    p: &Side,
+    q: &Side,
+    parts: &Parts,
+) -> Vec<JointTruth> {
+    let (norm_p, norm_q) = (&p.cloud.normalisation, &q.cloud.normalisation);
+    object_p
         .joints
         .iter()
         .zip(&object_q.joints)
@@ -214,6 +216,8 @@ pub fn cross_ground_truth(
             JointTruth {
                 part: parts.of_link[jp.child],
                 kind: jp.kind,
+                // Joint axes are unit when built (`Joint::revolute`, `prismatic`), so this
+                // only removes the rotation's rounding; the fallback is never taken.
                 axis_p: pairs::math::unit_or(&(pose_p.rotation * jp.axis), jp.axis),
                 pivot_p: norm_p.apply(&(pose_p * jp.pivot)),
                 axis_q: pairs::math::unit_or(&(pose_q.rotation * jq.axis), jq.axis),
@@ -222,16 +226,7 @@ pub fn cross_ground_truth(
                 value_q: q.values[index],
             }
         })
-        .collect();
-    GroundTruth {
-        part_p,
-        part_q,
-        motions,
-        flow: None,
-        corr_mask: vec![false; n],
-        corr_index: vec![-1; n],
-        joints,
-    }
+        .collect()
 }
 
 /// Index of the point of `cloud` labelled `part` nearest to `x`, or -1 if there is none.
