@@ -38,7 +38,8 @@
 //!
 //! // A two-part hinge with its exact flow: SeqRANSAC finds both parts.
 //! let pair = synthetic::hinge_pair("demo", 8, 0.8);
-//! let prediction = SeqRansac::default().segment(pair.input(), &pair.truth().flow)?;
+//! let flow = pair.truth().flow.as_deref().ok_or("a pair of one object has a flow")?;
+//! let prediction = SeqRansac::default().segment(pair.input(), flow)?;
 //! let matching = matched_iou(&prediction.segments_p, &pair.truth().part_p)?;
 //! assert!(matching.mean_iou() > 0.95);
 //! # Ok::<(), Box<dyn std::error::Error>>(())

@@ -75,6 +75,16 @@ fn rows(m: &Matrix4<f64>) -> pickle::Matrix4 {
 /// The `.npz` file of one pair.
 pub(super) fn npz(pair: &Pair) -> Result<Vec<u8>, FormatError> {
     let (input, truth) = (pair.input(), pair.truth());
+    if input.kind.cross_instance() {
+        return Err(FormatError::Shape {
+            pair: pair.id().into(),
+            reason: format!(
+                "a {} pair holds two different objects; mbs-npz's `trans` would give \
+                 MultiBodySync a flow between them, and none is defined",
+                input.kind.as_str()
+            ),
+        });
+    }
     let n = input.p.len();
     if input.q.len() != n {
         return Err(FormatError::Shape {

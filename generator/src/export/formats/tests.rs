@@ -165,6 +165,22 @@ fn yi_mat_refuses_a_second_point_count_naming_the_pair() {
     assert_eq!(left.len(), 1, "no staging folder is left behind");
 }
 
+#[test]
+fn both_formats_refuse_a_cross_instance_pair_naming_it() {
+    let dir = tempfile::tempdir().expect("temp dir");
+    let data = dir.path().join("data");
+    let cross = synthetic::cross_instance(synthetic::hinge_pair("x-0", 4, 0.5), 1.2);
+    write_dataset(&data, &[cross], "test");
+    for format in Format::ALL {
+        let out = dir.path().join(format!("out-{format:?}"));
+        let err = export_dataset(format, &data, &out, false, |_| {}).unwrap_err();
+        let text = err.to_string();
+        assert!(matches!(err, FormatError::Shape { .. }), "{err:?}");
+        assert!(text.contains("x-0") && text.contains("XF2F"), "{text}");
+        assert!(!out.exists(), "a failed export leaves nothing");
+    }
+}
+
 /// `T_k` maps P's points onto their moved positions in the common frame:
 /// `T_k p = A(p + flow)`, with `A` Q's normalised frame to P's.
 #[test]
