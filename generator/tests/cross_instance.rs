@@ -6,7 +6,8 @@ use generator::config::GeneratorConfig;
 use generator::generate::{build_object, generate_dataset, object_pairs, GenerateError};
 use generator::label::same_structure;
 use generator::objects::ArticulatedObject;
-use pairs::dataset::{Dataset, PAIRS_FILE};
+use generator::shard::merge_shards;
+use pairs::dataset::{Dataset, Shard, PAIRS_FILE};
 use pairs::math::{Isometry3, Point3};
 use pairs::{JointKind, PairKind};
 use parry3d::query::PointQuery;
@@ -134,6 +135,21 @@ fn a_scanned_cross_instance_set_is_deterministic_and_counts_what_it_left_out() {
     assert!(read(a.path()) == read(b.path()), "two runs differ");
     // Assemblies draw their links at random: they find no instance to match.
     assert_eq!(manifest.origin.left_out.get("assembly"), Some(&2));
+    // Shards count their own left-out objects, and merging adds them up: the merged set is
+    // the single run, manifest included.
+    let shards: Vec<std::path::PathBuf> = [1, 0]
+        .into_iter()
+        .map(|index| {
+            let dir = a.path().join(format!("shard-{index}"));
+            let shard = Some(Shard { index, count: 2 });
+            generate_dataset(&config, &dir, false, shard, |_| {}).expect("a shard");
+            dir
+        })
+        .collect();
+    let merged = a.path().join("merged");
+    let merged_manifest = merge_shards(&shards, &merged, false, |_| {}).expect("merge");
+    assert_eq!(merged_manifest.origin.left_out, manifest.origin.left_out);
+    assert!(read(&merged) == read(a.path()), "merged shards differ from the single run");
     let pairs: Vec<_> = Dataset::open(a.path())
         .expect("open")
         .pairs()
