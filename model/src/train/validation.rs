@@ -345,10 +345,21 @@ pub fn support_iou(probs: &[f32], parts: &[PartId]) -> f64 {
 
 #[cfg(test)]
 mod tests {
-    use super::{compare, support_iou, CompareError, PairScores, Scores};
+    use super::{compare, support_iou, true_flow, CompareError, PairScores, ScoreError, Scores};
+    use pairs::synthetic::{cross_instance, hinge_pair};
 
     fn pair(epe: f64, iou_sum: f64, parts: usize) -> PairScores {
         PairScores { epe, rand_index: 0.5, iou_sum, parts, support_iou: 0.25 }
+    }
+
+    #[test]
+    fn a_cross_instance_pair_has_no_true_flow_to_score() {
+        let single = hinge_pair("h", 4, 0.5);
+        assert_eq!(true_flow(&single).expect("a flow").len(), single.input().p.len());
+        let cross = cross_instance(hinge_pair("x", 4, 0.5), 1.2);
+        let err = true_flow(&cross).expect_err("no flow");
+        assert!(matches!(&err, ScoreError::NoFlow { pair, kind: "XF2F" } if pair == "x"), "{err}");
+        assert!(err.to_string().contains("SF2F, SF2P or SP2P"), "{err}");
     }
 
     #[test]
