@@ -216,12 +216,10 @@ fn pairs_with(
     let sampler = SurfaceSampler::new(object);
     let mut rng = rng_for(config.seed, u64::from(index), Stream::States);
     let states = draw_states(config, object, &mut rng);
-    let states_q = match partner {
-        Some(o) => {
-            draw_states(config, o.object, &mut rng_for(o.seed, u64::from(index), Stream::States))
-        }
-        None => states.clone(),
-    };
+    let partner_states = partner.map(|o| {
+        draw_states(config, o.object, &mut rng_for(o.seed, u64::from(index), Stream::States))
+    });
+    let states_q = partner_states.as_deref().unwrap_or(&states);
     let wanted = config.pairs_per_object as usize;
     let mut pairs = Vec::with_capacity(wanted);
     let scene = Scene { config, object, sampler: &sampler, index, variant, partner };
