@@ -1,6 +1,7 @@
 //! Labelling: which links form one rigid part in a pair, and the pair's ground truth.
 
 use pairs::math::{Isometry3, Point3, Real};
+use pairs::ground_truth::nearest_of_part;
 use pairs::{Cloud, GroundTruth, JointTruth, PartId, Similarity};
 
 use crate::objects::ArticulatedObject;
@@ -227,18 +228,6 @@ fn joint_truths(
             }
         })
         .collect()
-}
-
-/// Index of the point of `cloud` labelled `part` nearest to `x`, or -1 if there is none.
-fn nearest_of_part(x: &Point3, part: PartId, cloud: &[Point3], labels: &[PartId]) -> i32 {
-    cloud
-        .iter()
-        .zip(labels)
-        .enumerate()
-        .filter(|(_, (_, &l))| l == part)
-        .map(|(i, (c, _))| (i, (c - x).norm_squared()))
-        .min_by(|a, b| a.1.total_cmp(&b.1))
-        .map_or(-1, |(i, _)| i as i32)
 }
 
 #[cfg(test)]

@@ -56,6 +56,58 @@ pub enum PairError {
     },
 }
 
+/// A set record that breaks an invariant, or a pair it cannot give.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum SetError {
+    /// A field has the wrong shape or an id out of range.
+    #[error("set {set}: field `{field}` entry {index}: {reason}")]
+    Invalid {
+        /// Set id.
+        set: String,
+        /// Field name as in the file format.
+        field: &'static str,
+        /// Entry (view, part or joint) index.
+        index: usize,
+        /// What is wrong.
+        reason: String,
+    },
+    /// A view index past the set's views.
+    #[error("set {set}: there is no view {view} (the set has {views} views)")]
+    NoView {
+        /// Set id.
+        set: String,
+        /// The index asked for.
+        view: usize,
+        /// Number of views.
+        views: usize,
+    },
+    /// Two views that make no pair.
+    #[error("set {set}: views {i} and {j} make no pair: {reason}")]
+    NoPair {
+        /// Set id.
+        set: String,
+        /// View taken as P.
+        i: usize,
+        /// View taken as Q.
+        j: usize,
+        /// Why.
+        reason: String,
+    },
+    /// The pair of two views breaks a pair invariant.
+    #[error("set {set}, pair of views {i} and {j}: {source}")]
+    Pair {
+        /// Set id.
+        set: String,
+        /// View taken as P.
+        i: usize,
+        /// View taken as Q.
+        j: usize,
+        /// The broken invariant.
+        source: PairError,
+    },
+}
+
 /// Failure to read or write a dataset folder.
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
@@ -123,6 +175,14 @@ pub enum DatasetError {
         path: PathBuf,
         /// The broken invariant.
         source: PairError,
+    },
+    /// A decoded set breaks an invariant.
+    #[error("{path}: {source}")]
+    InvalidSet {
+        /// The file.
+        path: PathBuf,
+        /// The broken invariant.
+        source: SetError,
     },
     /// The file ended before the number of pairs the manifest announces.
     #[error("{path}: holds {found} pairs but the manifest announces {expected} (truncated?)")]

@@ -1,7 +1,7 @@
 //! The ground truth stored with every pair (DESIGN.md, "Shared definitions").
 
 use crate::joints::JointTruth;
-use crate::math::Vector3;
+use crate::math::{Point3, Vector3};
 use crate::parts::PartId;
 use crate::transform::Similarity;
 
@@ -34,4 +34,17 @@ impl GroundTruth {
     pub fn num_parts(&self) -> usize {
         self.motions.len()
     }
+}
+
+/// Index of the point of `cloud` labelled `part` nearest to `x`, or -1 if there is none
+/// (the target of a pair's `corr_index`; the first of equally near points).
+pub fn nearest_of_part(x: &Point3, part: PartId, cloud: &[Point3], labels: &[PartId]) -> i32 {
+    cloud
+        .iter()
+        .zip(labels)
+        .enumerate()
+        .filter(|(_, (_, &l))| l == part)
+        .map(|(i, (c, _))| (i, (c - x).norm_squared()))
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .map_or(-1, |(i, _)| i as i32)
 }

@@ -7,6 +7,7 @@ use crate::joints::{JointKind, JointTruth};
 use crate::math::{Isometry3, Point3, Real, Vector3};
 use crate::pair::{Pair, PairInput, PairKind, Provenance};
 use crate::parts::PartId;
+use crate::set::{Set, SetInput, SetJoint, SetProvenance, SetTruth, View, ViewKind, ViewProvenance};
 use crate::transform::{rotation_about, Similarity};
 
 /// A two-part "book": two unit squares sampled on an `side x side` grid each, hinged along
@@ -122,4 +123,96 @@ pub fn cross_instance(pair: Pair, stretch: Real) -> Pair {
     truth.corr_index = vec![-1; n];
     provenance.seed_q = Some(provenance.seed + 1);
     Pair::new(input, truth, provenance).expect("a cross-instance pair without flow is valid")
+}
+
+/// A set of the [`hinge_pair`] "book" in `angles.len()` states: view k turns the second
+/// square by `angles[k]` radians about the hinge. Every view is a full shape holding the
+/// same samples in the same order, normalised on its own; set part 1 is the moving square
+/// (at least two angles must differ). Pairs of views with equal angles have one part.
+///
+/// # Panics
+/// With fewer than two angles, or all angles equal.
+pub fn hinge_set(id: &str, side: usize, angles: &[Real]) -> Set {
+    let pair = hinge_pair(id, side, 0.0);
+    let (input, truth, _) = pair.into_parts();
+    let object: Vec<Point3> = input.p.points.iter().map(|x| input.p.normalisation.invert(x)).collect();
+    let parts = truth.part_p;
+    let (pivot, axis) = (Point3::new(1.0, 0.0, 0.0), Vector3::y());
+    let posed = |angle: Real| -> Vec<Point3> {
+        let hinge = rotation_about(&pivot, &axis, angle);
+        object.iter().zip(&parts).map(|(x, &k)| if k == 0 { *x } else { hinge * x }).collect()
+    };
+    let views: Vec<View> = angles
+        .iter()
+        .map(|&a| View {
+            kind: ViewKind::Full,
+            cloud: Cloud::normalise(&posed(a)).expect("the parts span a box"),
+        })
+        .collect();
+    let norm0 = views[0].cloud.normalisation;
+    let motions: Vec<Vec<Similarity>> = views
+        .iter()
+        .zip(angles)
+        .map(|(v, &a)| {
+            [Isometry3::identity(), rotation_about(&pivot, &axis, a - angles[0])]
+                .iter()
+                .map(|m| Similarity::between_normalised(m, &norm0, &v.cloud.normalisation))
+                .collect()
+        })
+        .collect();
+    let flows = motions
+        .iter()
+        .map(|m| {
+            views[0]
+                .cloud
+                .points
+                .iter()
+                .zip(&parts)
+                .map(|(x, &k)| m[usize::from(k)].apply(x) - x)
+                .collect()
+        })
+        .collect();
+    let k = angles.len();
+    let n = parts.len();
+    let pair_parts = angles
+        .iter()
+        .map(|a| angles.iter().map(|b| if a == b { vec![0, 0] } else { vec![0, 1] }).collect())
+        .collect::<Vec<Vec<Vec<PartId>>>>();
+    let mut pair_parts = pair_parts;
+    for (i, row) in pair_parts.iter_mut().enumerate() {
+        row[i] = vec![0, 1];
+    }
+    let joint = SetJoint {
+        name: "hinge".into(),
+        part: 1,
+        parent: 0,
+        kind: JointKind::Revolute,
+        axis: vec![axis; k],
+        pivot: views.iter().map(|v| v.cloud.normalisation.apply(&pivot)).collect(),
+        value: angles.to_vec(),
+    };
+    let truth = SetTruth {
+        parts: vec![parts; k],
+        motions,
+        flows,
+        presence: vec![vec![vec![true; n]; k]; k],
+        pair_parts,
+        joints: vec![joint],
+    };
+    let provenance = SetProvenance {
+        category: "hinge".into(),
+        generator_version: env!("CARGO_PKG_VERSION").into(),
+        views: angles
+            .iter()
+            .enumerate()
+            .map(|(i, &a)| ViewProvenance {
+                articulation: i as u32,
+                joints: [("hinge".to_string(), a)].into(),
+                pose: None,
+            })
+            .collect(),
+        ..Default::default()
+    };
+    Set::new(SetInput { id: id.into(), views }, truth, provenance, vec![None; k])
+        .expect("the hinge set satisfies every invariant by construction")
 }

@@ -66,6 +66,21 @@ impl Similarity {
             && self.scale.is_finite()
     }
 
+    /// `self ∘ other`: the motion that applies `other`, then `self`.
+    pub fn compose(&self, other: &Self) -> Self {
+        Self {
+            rotation: self.rotation * other.rotation,
+            translation: self.rotation * other.translation * self.scale + self.translation,
+            scale: self.scale * other.scale,
+        }
+    }
+
+    /// The inverse motion, `y -> R^T (y - t) / scale` (the rotation taken as orthonormal).
+    pub fn inverse(&self) -> Self {
+        let rotation = self.rotation.transpose();
+        Self { rotation, translation: -(rotation * self.translation) / self.scale, scale: 1.0 / self.scale }
+    }
+
     /// Largest deviation of `rotation` from an orthonormal matrix with determinant +1.
     pub fn rotation_defect(&self) -> Real {
         let gram = self.rotation.transpose() * self.rotation - Matrix3::identity();

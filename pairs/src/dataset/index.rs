@@ -4,6 +4,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::joints::JointKind;
 use crate::pair::Pair;
+use crate::set::Set;
 use crate::transform::rotation_error_deg;
 
 /// One row of `index.csv`.
@@ -67,6 +68,51 @@ impl IndexRow {
                 .iter()
                 .map(|m| rotation_error_deg(&truth.motions[0].rotation, &m.rotation))
                 .fold(0.0f32, f32::max),
+        }
+    }
+}
+
+/// One row of a set dataset's `index.csv`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct SetIndexRow {
+    /// Set id.
+    pub id: String,
+    /// `full`, `scan` or `mixed`.
+    pub mode: String,
+    /// Number of views K.
+    pub views: usize,
+    /// Object category.
+    pub category: String,
+    /// Object index within the dataset.
+    pub object_id: u32,
+    /// Index of the set among the object's sets.
+    pub set_index: u32,
+    /// Each view's articulation state, `;`-separated.
+    pub articulations: String,
+    /// Each view's number of points, `;`-separated.
+    pub points: String,
+    /// Number of set parts, base included.
+    pub num_parts: usize,
+    /// Joint kinds between set parts, `;`-separated, in joint order.
+    pub joint_types: String,
+}
+
+impl SetIndexRow {
+    /// The row describing a set.
+    pub fn of(set: &Set) -> Self {
+        let (input, truth, prov) = (set.input(), set.truth(), set.provenance());
+        let join = |items: Vec<String>| items.join(";");
+        Self {
+            id: input.id.clone(),
+            mode: set.mode().as_str().into(),
+            views: set.len(),
+            category: prov.category.clone(),
+            object_id: prov.object_id,
+            set_index: prov.set_index,
+            articulations: join(prov.views.iter().map(|v| v.articulation.to_string()).collect()),
+            points: join(input.views.iter().map(|v| v.cloud.len().to_string()).collect()),
+            num_parts: truth.num_parts(),
+            joint_types: join(truth.joints.iter().map(|j| j.kind.as_str().to_string()).collect()),
         }
     }
 }

@@ -32,6 +32,9 @@ pub struct FileEntry {
 pub struct Counts {
     /// Number of pairs.
     pub pairs: u64,
+    /// Sets (set datasets only; absent from a pair dataset's manifest).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub sets: u64,
     /// Number of distinct objects.
     pub objects: u64,
     /// Pairs per category.
@@ -178,4 +181,8 @@ impl FileEntry {
 
 fn hex(digest: &[u8]) -> String {
     digest.iter().map(|b| format!("{b:02x}")).collect()
+}
+
+fn is_zero(n: &u64) -> bool {
+    *n == 0
 }

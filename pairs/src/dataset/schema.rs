@@ -250,7 +250,7 @@ pub(crate) fn f32_bytes(values: impl Iterator<Item = Real>) -> Vec<u8> {
     values.flat_map(|v| v.to_le_bytes()).collect()
 }
 
-fn cloud_record(c: &Cloud) -> CloudRecord {
+pub(crate) fn cloud_record(c: &Cloud) -> CloudRecord {
     CloudRecord {
         points: ByteBuf::from(f32_bytes(c.points.iter().flat_map(|p| p.coords.iter().copied()))),
         centre: c.normalisation.centre.into(),
@@ -262,11 +262,11 @@ fn row_major(r: &Matrix3) -> [Real; 9] {
     [r.m11, r.m12, r.m13, r.m21, r.m22, r.m23, r.m31, r.m32, r.m33]
 }
 
-fn motion_record(m: &Similarity) -> MotionRecord {
+pub(crate) fn motion_record(m: &Similarity) -> MotionRecord {
     MotionRecord { rotation: row_major(&m.rotation), translation: m.translation.into() }
 }
 
-fn scan_record(s: &Scan) -> ScanRecord {
+pub(crate) fn scan_record(s: &Scan) -> ScanRecord {
     let k = &s.intrinsics;
     ScanRecord {
         width: k.width,
@@ -281,7 +281,7 @@ fn scan_record(s: &Scan) -> ScanRecord {
     }
 }
 
-fn scan(r: ScanRecord) -> Scan {
+pub(crate) fn scan(r: ScanRecord) -> Scan {
     let [fx, fy, cx, cy] = r.intrinsics;
     Scan {
         intrinsics: Intrinsics { width: r.width, height: r.height, fx, fy, cx, cy },
@@ -318,14 +318,14 @@ fn joint_truth(j: &JointRecord) -> JointTruth {
     }
 }
 
-fn cloud(id: &str, field: &'static str, rec: CloudRecord) -> Result<Cloud, PairError> {
+pub(crate) fn cloud(id: &str, field: &'static str, rec: CloudRecord) -> Result<Cloud, PairError> {
     let points = vectors(id, field, &rec.points)?.into_iter().map(Point3::from).collect();
     let normalisation = Normalisation { centre: Vector3::from(rec.centre), scale: rec.scale };
     Ok(Cloud { points, normalisation })
 }
 
 /// Splits a byte string into 4-byte words, or names the field whose length is off.
-fn words(id: &str, field: &'static str, bytes: &[u8]) -> Result<Vec<[u8; 4]>, PairError> {
+pub(crate) fn words(id: &str, field: &'static str, bytes: &[u8]) -> Result<Vec<[u8; 4]>, PairError> {
     let (chunks, rest) = bytes.as_chunks::<4>();
     if rest.is_empty() {
         Ok(chunks.to_vec())
@@ -339,7 +339,7 @@ fn words(id: &str, field: &'static str, bytes: &[u8]) -> Result<Vec<[u8; 4]>, Pa
     }
 }
 
-fn vectors(id: &str, field: &'static str, bytes: &[u8]) -> Result<Vec<Vector3>, PairError> {
+pub(crate) fn vectors(id: &str, field: &'static str, bytes: &[u8]) -> Result<Vec<Vector3>, PairError> {
     let values: Vec<Real> = words(id, field, bytes)?.into_iter().map(f32::from_le_bytes).collect();
     let (triples, rest) = values.as_chunks::<3>();
     if !rest.is_empty() {

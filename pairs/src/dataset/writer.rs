@@ -10,11 +10,12 @@ use std::path::{Path, PathBuf};
 use mcap::records::MessageHeader;
 use mcap::{Compression, WriteOptions, Writer};
 
-use super::index::IndexRow;
+use super::index::{IndexRow, SetIndexRow};
 use super::manifest::{
     Counts, DatasetOrigin, FileEntry, Manifest, FORMAT_NAME, FORMAT_VERSION, MANIFEST_FILE,
 };
 use super::schema::{encode_pair, PAIR_ENCODING, PAIR_SCHEMA, PAIR_TOPIC, SCHEMA_VERSION};
+use super::set_schema::{encode_set, SET_SCHEMA, SET_SCHEMA_VERSION, SET_TOPIC};
 use super::viz::{
     self, COMPRESSED_IMAGE_JSON_SCHEMA, COMPRESSED_IMAGE_SCHEMA, POINT_CLOUD_JSON_SCHEMA,
     POINT_CLOUD_SCHEMA, VIZ_OFFSET, VIZ_P_TOPIC, VIZ_Q_TOPIC,
@@ -23,9 +24,14 @@ use crate::atomic::{at, partial_path, replace_with};
 use crate::error::DatasetError;
 use crate::pair::Pair;
 use crate::scan::{PairImages, Scan, ScanImages, IMAGES_DIR};
+use crate::set::Set;
 
 /// Name of the MCAP file in a dataset folder.
 pub const PAIRS_FILE: &str = "pairs.mcap";
+/// Name of the MCAP file in a set dataset folder.
+pub const SETS_FILE: &str = "sets.mcap";
+/// Topic of a set dataset's visualisation cloud: every view side by side.
+pub const VIZ_VIEWS_TOPIC: &str = "/viz/views";
 /// Name of the index file in a dataset folder.
 pub const INDEX_FILE: &str = "index.csv";
 /// Uncompressed chunk size: bounds the writer's memory whatever the dataset size.
@@ -36,6 +42,8 @@ const PAIR_PERIOD_NS: u64 = 1_000_000_000;
 /// Writes one dataset folder, pair by pair, with bounded memory.
 pub struct DatasetWriter {
     dir: PathBuf,
+    /// `pairs.mcap` or `sets.mcap`.
+    records: &'static str,
     mcap_path: PathBuf,
     index_path: PathBuf,
     mcap: Writer<BufWriter<File>>,
@@ -48,9 +56,10 @@ pub struct DatasetWriter {
 }
 
 struct Channels {
-    pair: u16,
-    viz_p: u16,
-    viz_q: u16,
+    /// `/pair` or `/set`.
+    record: u16,
+    /// `/viz/p` and `/viz/q` for pairs, `/viz/views` for sets.
+    viz: Vec<u16>,
     /// Image channels by topic, added when the first scanned pair comes, so that datasets
     /// of full shapes do not list them.
     images: BTreeMap<String, u16>,
@@ -66,7 +75,19 @@ impl DatasetWriter {
     /// `dir` already holds dataset files and `overwrite` is false; with `overwrite`, the old
     /// files stay untouched until [`finish`](Self::finish) replaces them.
     pub fn create(dir: &Path, overwrite: bool) -> Result<Self, DatasetError> {
-        let existing = [PAIRS_FILE, INDEX_FILE, MANIFEST_FILE].iter().any(|f| dir.join(f).exists());
+        Self::start(dir, overwrite, PAIRS_FILE)
+    }
+
+    /// Starts a set dataset (`sets.mcap`, one `/set` message per set) in `dir`, under the
+    /// rules of [`create`](Self::create).
+    pub fn create_sets(dir: &Path, overwrite: bool) -> Result<Self, DatasetError> {
+        Self::start(dir, overwrite, SETS_FILE)
+    }
+
+    fn start(dir: &Path, overwrite: bool, records: &'static str) -> Result<Self, DatasetError> {
+        let existing = [PAIRS_FILE, SETS_FILE, INDEX_FILE, MANIFEST_FILE]
+            .iter()
+            .any(|f| dir.join(f).exists());
         if existing && !overwrite {
             return Err(DatasetError::Exists { dir: dir.into() });
         }
@@ -76,7 +97,7 @@ impl DatasetWriter {
             // Left by an interrupted run; never part of a finished dataset.
             std::fs::remove_dir_all(&images_partial).map_err(DatasetError::io(&images_partial))?;
         }
-        let mcap_path = partial(dir, PAIRS_FILE);
+        let mcap_path = partial(dir, records);
         let file = File::create(&mcap_path).map_err(DatasetError::io(&mcap_path))?;
         // One compression thread: multithreaded zstd output depends on the machine's core
         // count, and the files must be byte-identical everywhere.
@@ -87,11 +108,17 @@ impl DatasetWriter {
             .profile("")
             .create(BufWriter::new(file))
             .map_err(DatasetError::mcap(&mcap_path))?;
-        let channels = add_channels(&mut mcap).map_err(DatasetError::mcap(&mcap_path))?;
+        let channels = if records == SETS_FILE {
+            add_set_channels(&mut mcap)
+        } else {
+            add_channels(&mut mcap)
+        }
+        .map_err(DatasetError::mcap(&mcap_path))?;
         let index_path = partial(dir, INDEX_FILE);
         let index_file = File::create(&index_path).map_err(DatasetError::io(&index_path))?;
         Ok(Self {
             dir: dir.into(),
+            records,
             mcap_path,
             index_path,
             mcap,
@@ -130,13 +157,13 @@ impl DatasetWriter {
         }
         let (input, truth) = (pair.input(), pair.truth());
         let messages = [
-            (self.channels.pair, encode_pair(pair)),
+            (self.channels.record, encode_pair(pair)),
             (
-                self.channels.viz_p,
+                self.channels.viz[0],
                 viz::point_cloud_message(&input.p.points, &truth.part_p, seq, -VIZ_OFFSET),
             ),
             (
-                self.channels.viz_q,
+                self.channels.viz[1],
                 viz::point_cloud_message(&input.q.points, &truth.part_q, seq, VIZ_OFFSET),
             ),
         ];
@@ -150,6 +177,60 @@ impl DatasetWriter {
         self.counts.pairs += 1;
         *self.counts.categories.entry(prov.category.clone()).or_default() += 1;
         *self.counts.kinds.entry(input.kind.as_str().into()).or_default() += 1;
+        self.objects.insert(prov.object_id);
+        Ok(())
+    }
+
+    /// Appends one set with the PNG images of its scanned views (`images[k]` for view k,
+    /// `None` for a full view): its record, one visualisation cloud with every view side by
+    /// side, and its index row. The dataset must have been started with
+    /// [`create_sets`](Self::create_sets).
+    pub fn write_set(
+        &mut self,
+        set: &Set,
+        images: &[Option<ScanImages<Vec<u8>>>],
+    ) -> Result<(), DatasetError> {
+        if self.records != SETS_FILE {
+            let reason = "a set goes to a set dataset (DatasetWriter::create_sets)".to_string();
+            return Err(DatasetError::Images { pair: set.id().into(), reason });
+        }
+        let seq = self.counts.sets;
+        if images.len() != set.len() {
+            let reason = format!("{} image entries for {} views", images.len(), set.len());
+            return Err(DatasetError::Images { pair: set.id().into(), reason });
+        }
+        for (k, (scan, pngs)) in set.scans().iter().zip(images).enumerate() {
+            let side = format!("v{k}");
+            match (scan, pngs) {
+                (None, None) => {}
+                (Some(scan), Some(pngs)) => self.write_images(set.id(), &side, scan, pngs, seq)?,
+                _ => {
+                    let reason = format!("view {k}: a scanned view needs its images, a full one none");
+                    return Err(DatasetError::Images { pair: set.id().into(), reason });
+                }
+            }
+        }
+        let (input, truth) = (set.input(), set.truth());
+        let (mut points, mut parts) = (Vec::new(), Vec::new());
+        for (k, view) in input.views.iter().enumerate() {
+            let shift = crate::math::Vector3::x() * (2.0 * VIZ_OFFSET * k as crate::math::Real);
+            points.extend(view.cloud.points.iter().map(|p| p + shift));
+            parts.extend_from_slice(&truth.parts[k]);
+        }
+        let messages = [
+            (self.channels.record, encode_set(set)),
+            (self.channels.viz[0], viz::point_cloud_message(&points, &parts, seq, 0.0)),
+        ];
+        for (channel_id, data) in messages {
+            self.write_message(channel_id, seq, &data)?;
+        }
+        self.index
+            .serialize(SetIndexRow::of(set))
+            .map_err(|source| DatasetError::Csv { path: self.index_path.clone(), source })?;
+        let prov = set.provenance();
+        self.counts.sets += 1;
+        *self.counts.categories.entry(prov.category.clone()).or_default() += 1;
+        *self.counts.kinds.entry(set.mode().as_str().into()).or_default() += 1;
         self.objects.insert(prov.object_id);
         Ok(())
     }
@@ -216,14 +297,14 @@ impl DatasetWriter {
         self.mcap.write_to_known_channel(&header, data).map_err(DatasetError::mcap(&self.mcap_path))
     }
 
-    /// Number of pairs written so far.
+    /// Number of pairs (or sets) written so far.
     pub fn len(&self) -> u64 {
-        self.counts.pairs
+        self.counts.pairs + self.counts.sets
     }
 
-    /// Whether no pair has been written yet.
+    /// Whether nothing has been written yet.
     pub fn is_empty(&self) -> bool {
-        self.counts.pairs == 0
+        self.len() == 0
     }
 
     /// Closes the files, renames them into place, and writes `manifest.json` last, so that a
@@ -251,8 +332,13 @@ impl DatasetWriter {
         if manifest_path.exists() {
             std::fs::remove_file(&manifest_path).map_err(DatasetError::io(&manifest_path))?;
         }
+        // A dataset of the other record kind that this one replaces loses its records file.
+        let other = self.dir.join(if self.records == SETS_FILE { PAIRS_FILE } else { SETS_FILE });
+        if other.exists() {
+            std::fs::remove_file(&other).map_err(DatasetError::io(&other))?;
+        }
         let mut files = BTreeMap::new();
-        for name in [PAIRS_FILE, INDEX_FILE] {
+        for name in [self.records, INDEX_FILE] {
             let (from, to) = (partial(&self.dir, name), self.dir.join(name));
             std::fs::rename(&from, &to).map_err(DatasetError::io(&to))?;
             files.insert(name.to_string(), FileEntry::of(&to)?);
@@ -293,7 +379,19 @@ fn add_channels(mcap: &mut Writer<BufWriter<File>>) -> mcap::McapResult<Channels
         mcap.add_schema(POINT_CLOUD_SCHEMA, "jsonschema", POINT_CLOUD_JSON_SCHEMA.as_bytes())?;
     let viz_p = mcap.add_channel(schema, VIZ_P_TOPIC, "json", &BTreeMap::new())?;
     let viz_q = mcap.add_channel(schema, VIZ_Q_TOPIC, "json", &BTreeMap::new())?;
-    Ok(Channels { pair, viz_p, viz_q, images: BTreeMap::new() })
+    Ok(Channels { record: pair, viz: vec![viz_p, viz_q], images: BTreeMap::new() })
+}
+
+fn add_set_channels(mcap: &mut Writer<BufWriter<File>>) -> mcap::McapResult<Channels> {
+    let meta = BTreeMap::from([
+        ("schema".to_string(), SET_SCHEMA.to_string()),
+        ("schema_version".to_string(), SET_SCHEMA_VERSION.to_string()),
+    ]);
+    let record = mcap.add_channel(0, SET_TOPIC, PAIR_ENCODING, &meta)?;
+    let schema =
+        mcap.add_schema(POINT_CLOUD_SCHEMA, "jsonschema", POINT_CLOUD_JSON_SCHEMA.as_bytes())?;
+    let viz = mcap.add_channel(schema, VIZ_VIEWS_TOPIC, "json", &BTreeMap::new())?;
+    Ok(Channels { record, viz: vec![viz], images: BTreeMap::new() })
 }
 
 fn add_image_channel(mcap: &mut Writer<BufWriter<File>>, topic: &str) -> mcap::McapResult<u16> {
