@@ -2,7 +2,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use pairs::PairKind;
+use pairs::{PairKind, SetMode};
 
 use crate::categories::{self, Category, Split};
 pub use crate::import::ImportOptions;
@@ -48,6 +48,33 @@ pub struct GeneratorConfig {
     /// How user assets are read (`generator --assets`; built-in defaults when absent).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub import: Option<ImportOptions>,
+    /// Present for a set dataset (`generator --kind sets`): K views of each object instead
+    /// of pairs; `kind` and `pairs_per_object` do not apply.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub sets: Option<SetsConfig>,
+}
+
+/// A set dataset: K observations of one object in K distinct articulation states (the
+/// MultiBodySync setting).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct SetsConfig {
+    /// Views K per set, 2 to [`MAX_VIEWS`].
+    pub views: u32,
+    /// `full` (every view a full shape), `scan` (every view a virtual scan) or `mixed`
+    /// (view 0 full, the others scans).
+    pub mode: SetMode,
+    /// Sets per object, each of K distinct states drawn from the object's states.
+    pub per_object: u32,
+}
+
+/// Most views a set may have.
+pub const MAX_VIEWS: u32 = 16;
+
+impl Default for SetsConfig {
+    fn default() -> Self {
+        Self { views: 4, mode: SetMode::Full, per_object: 1 }
+    }
 }
 
 fn is_zero(n: &u32) -> bool {
@@ -72,6 +99,7 @@ impl Default for GeneratorConfig {
             scan: None,
             scanned_per_pair: 0,
             import: None,
+            sets: None,
         }
     }
 }
@@ -124,7 +152,11 @@ impl GeneratorConfig {
     /// The config with every value it uses written out: the scanner's settings for the
     /// scanned kinds (a full-shape config keeps none), so manifests record all of them.
     pub fn resolved(&self) -> Self {
-        let scan = self.kind.scanned_q().then(|| self.scanner());
+        let scanned = match &self.sets {
+            Some(sets) => sets.mode != SetMode::Full,
+            None => self.kind.scanned_q(),
+        };
+        let scan = scanned.then(|| self.scanner());
         Self { scan, ..self.clone() }
     }
 
@@ -139,7 +171,8 @@ impl GeneratorConfig {
             return invalid("states_per_object", "must be at least 2");
         }
         let possible = self.states_per_object * (self.states_per_object - 1) / 2;
-        if self.pairs_per_object == 0 || self.pairs_per_object > possible {
+        let pairs = self.sets.is_none();
+        if pairs && (self.pairs_per_object == 0 || self.pairs_per_object > possible) {
             return invalid(
                 "pairs_per_object",
                 &format!("must be 1 to {possible} (pairs of distinct states)"),
@@ -159,6 +192,20 @@ impl GeneratorConfig {
         }
         if !(self.pose_translation >= 0.0 && self.pose_translation.is_finite()) {
             return invalid("pose_translation", "must be finite and non-negative");
+        }
+        if let Some(sets) = &self.sets {
+            if !(2..=MAX_VIEWS).contains(&sets.views) {
+                return invalid("sets.views", &format!("must be 2 to {MAX_VIEWS}"));
+            }
+            if sets.views > self.states_per_object {
+                return invalid("sets.views", "must be at most `states_per_object`");
+            }
+            if sets.per_object == 0 || sets.per_object > 64 {
+                return invalid("sets.per_object", "must be 1 to 64");
+            }
+            if self.kind.cross_instance() {
+                return invalid("kind", "a set dataset observes one object (not XF2F or XF2P)");
+            }
         }
         self.scanner().validate()?;
         if let Some(import) = &self.import {
@@ -189,9 +236,14 @@ impl GeneratorConfig {
             .collect()
     }
 
-    /// Number of pairs the dataset will hold.
+    /// Number of pairs the dataset will hold (of sets, for a set dataset).
     pub fn total_pairs(&self) -> u64 {
-        u64::from(self.objects) * u64::from(self.pairs_per_object)
+        u64::from(self.objects) * u64::from(self.items_per_object())
+    }
+
+    /// Pairs (or sets) each object gives.
+    pub fn items_per_object(&self) -> u32 {
+        self.sets.as_ref().map_or(self.pairs_per_object, |s| s.per_object)
     }
 }
 

@@ -21,8 +21,10 @@ use crate::seed::{rng_for, Rng, Stream};
 use crate::shard::shard_objects;
 
 mod pair;
+mod set;
 
 use pair::{make_pair, Partner, Scene, State};
+pub use set::{object_sets, set_id, GeneratedSet, SET_ATTEMPTS};
 
 /// Version written into every pair's provenance and the manifest.
 pub const GENERATOR_VERSION: &str = env!("CARGO_PKG_VERSION");
@@ -73,9 +75,35 @@ pub enum GenerateError {
         /// Its category.
         category: String,
     },
+    /// An object could not give a set: no draw of K distinct states had every set part
+    /// seen in every view.
+    #[error("object {object} ({category}): none of {SET_ATTEMPTS} draws of {views} distinct states gives a set whose every part has at least {min} points in every view; lower `sets.views` or `min_part_points`, or raise `points`")]
+    TooFewSets {
+        /// Object index.
+        object: u32,
+        /// Its category.
+        category: String,
+        /// Views per set.
+        views: u32,
+        /// The config's `min_part_points`.
+        min: u32,
+    },
+    /// The pair of two views would merge links that the set keeps apart (a generator bug).
+    #[error("object {object}: the pair of views {i} and {j} groups links across set parts")]
+    SetParts {
+        /// Object index.
+        object: u32,
+        /// View taken as P.
+        i: usize,
+        /// View taken as Q.
+        j: usize,
+    },
     /// A generated pair broke an invariant (a generator bug).
     #[error("generated an invalid pair: {0}")]
     Pair(#[from] PairError),
+    /// A generated set broke an invariant (a generator bug).
+    #[error("generated an invalid set: {0}")]
+    Set(#[from] pairs::SetError),
     /// Writing the dataset failed.
     #[error(transparent)]
     Dataset(#[from] DatasetError),
@@ -279,6 +307,9 @@ pub fn generate_dataset(
     mut progress: impl FnMut(u64),
 ) -> Result<Manifest, GenerateError> {
     config.validate()?;
+    if config.sets.is_some() {
+        return generate_set_dataset(config, dir, overwrite, shard, progress);
+    }
     let objects: Vec<u32> = shard_objects(config.objects, shard)?.collect();
     let categories = config.categories()?;
     let mut writer = DatasetWriter::create(dir, overwrite)?;
@@ -299,6 +330,27 @@ pub fn generate_dataset(
         }
     }
     Ok(writer.finish(DatasetOrigin { left_out, ..dataset_origin(config, shard) })?)
+}
+
+/// [`generate_dataset`] for a set dataset: every object's sets, in object order.
+fn generate_set_dataset(
+    config: &GeneratorConfig,
+    dir: &Path,
+    overwrite: bool,
+    shard: Option<Shard>,
+    mut progress: impl FnMut(u64),
+) -> Result<Manifest, GenerateError> {
+    let objects: Vec<u32> = shard_objects(config.objects, shard)?.collect();
+    let mut writer = DatasetWriter::create_sets(dir, overwrite)?;
+    for batch in objects.chunks(BATCH_OBJECTS) {
+        let generated: Vec<Vec<GeneratedSet>> =
+            batch.par_iter().map(|&i| object_sets(config, i, true)).collect::<Result<_, _>>()?;
+        for set in generated.iter().flatten() {
+            writer.write_set(&set.set, &set.images)?;
+            progress(writer.len());
+        }
+    }
+    Ok(writer.finish(dataset_origin(config, shard))?)
 }
 
 /// The manifest's record of what made a dataset (or one shard of it).

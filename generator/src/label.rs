@@ -1,7 +1,7 @@
 //! Labelling: which links form one rigid part in a pair, and the pair's ground truth.
 
-use pairs::math::{Isometry3, Point3, Real};
 use pairs::ground_truth::nearest_of_part;
+use pairs::math::{Isometry3, Point3, Real};
 use pairs::{Cloud, GroundTruth, JointTruth, PartId, Similarity};
 
 use crate::objects::ArticulatedObject;
@@ -32,20 +32,27 @@ impl Parts {
 /// Groups links whose motion from P's state to Q's state is the same (their relative
 /// transform did not change), given each link's motion and the object's size.
 pub fn merge_links(link_motions: &[Isometry3], size: Real) -> Parts {
+    merge_links_over(std::slice::from_ref(&link_motions), size)
+}
+
+/// Groups links whose motions are the same in every one of several state changes
+/// (`motions[k][link]`: the set's views, each from view 0): a link joins the first group
+/// whose first link moved as it did in all of them. One change is [`merge_links`].
+pub fn merge_links_over<M: AsRef<[Isometry3]>>(motions: &[M], size: Real) -> Parts {
     let same = |a: &Isometry3, b: &Isometry3| {
         a.rotation.angle_to(&b.rotation) < SAME_ROTATION
             && (a.translation.vector - b.translation.vector).norm() < SAME_TRANSLATION * size
     };
+    let links = motions.first().map_or(0, |m| m.as_ref().len());
     let mut first_link: Vec<usize> = Vec::new();
-    let of_link = link_motions
-        .iter()
-        .enumerate()
-        .map(|(link, m)| {
-            let part =
-                first_link.iter().position(|&r| same(m, &link_motions[r])).unwrap_or_else(|| {
-                    first_link.push(link);
-                    first_link.len() - 1
-                });
+    let of_link = (0..links)
+        .map(|link| {
+            let together =
+                |r: usize| motions.iter().all(|m| same(&m.as_ref()[link], &m.as_ref()[r]));
+            let part = first_link.iter().position(|&r| together(r)).unwrap_or_else(|| {
+                first_link.push(link);
+                first_link.len() - 1
+            });
             part as PartId
         })
         .collect();
@@ -199,7 +206,7 @@ pub fn cross_ground_truth(
 /// The joint of every moving part, in both objects (the same object for a pair of one
 /// object): its axis and pivot posed in each side's normalised frame, its value in each
 /// state.
-fn joint_truths(
+pub(crate) fn joint_truths(
     (object_p, object_q): (&ArticulatedObject, &ArticulatedObject),
     p: &Side,
     q: &Side,

@@ -20,6 +20,10 @@ pub enum Stream {
     Scan(u32, u32),
     /// The seed of the `k`-th second instance tried for a cross-instance pair.
     Partner(u32),
+    /// Choosing the states of the set with this index within its object.
+    Set(u32),
+    /// Everything of view `k` of candidate set `c` (pose, samples, scan): `View(c, k)`.
+    View(u32, u32),
 }
 
 /// The random stream for `purpose` of object `object` in a dataset with `seed`.
@@ -33,6 +37,10 @@ pub fn rng_for(seed: u64, object: u64, purpose: Stream) -> Rng {
         Stream::Scan(k, v) => 1 << 23 | (u64::from(v) & 0x7f) << 16 | (u64::from(k) & 0xffff),
         // Bit 22 set (under bit 23): apart from every `Pair(k)` below 2^22 and every `Scan`.
         Stream::Partner(k) => 1 << 22 | (u64::from(k) & 0xffff),
+        // Bit 21 alone among the high bits: apart from `Pair(k)` below 2^20 and the above.
+        Stream::Set(s) => 1 << 21 | (u64::from(s) & 0xffff),
+        // Bit 20 under a clear bit 21: 12 bits of candidate set, 8 of view.
+        Stream::View(c, k) => 1 << 20 | (u64::from(c) & 0xfff) << 8 | (u64::from(k) & 0xff),
     };
     // ChaCha's 64-bit stream id: 24 bits of purpose under 40 bits of object index.
     rng.set_stream((object << 24) | (purpose & 0xff_ffff));
@@ -54,5 +62,8 @@ mod tests {
         assert_ne!(draw(3, Stream::Scan(2, 0)), draw(3, Stream::Pair(2)));
         assert_ne!(draw(3, Stream::Partner(0)), draw(3, Stream::Partner(1)));
         assert_ne!(draw(3, Stream::Partner(0)), draw(3, Stream::Pair(0)));
+        assert_ne!(draw(3, Stream::Set(0)), draw(3, Stream::View(0, 0)));
+        assert_ne!(draw(3, Stream::View(0, 1)), draw(3, Stream::View(1, 0)));
+        assert_ne!(draw(3, Stream::View(0, 0)), draw(3, Stream::Pair(0)));
     }
 }

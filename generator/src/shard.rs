@@ -121,7 +121,19 @@ pub fn merge_shards(
             *origin.left_out.entry(category.clone()).or_insert(0) += n;
         }
     }
+    let sets = first.holds_sets();
     opened.sort_by_key(|(s, _)| s.index);
+    if sets {
+        let mut writer = DatasetWriter::create_sets(out, overwrite)?;
+        for (_, dataset) in &opened {
+            for set in dataset.sets()? {
+                let set = set?;
+                writer.write_set(&set, &dataset.read_set_images(&set)?)?;
+                progress(writer.len());
+            }
+        }
+        return Ok(writer.finish(origin)?);
+    }
     let mut writer = DatasetWriter::create(out, overwrite)?;
     for (_, dataset) in &opened {
         for pair in dataset.pairs()? {

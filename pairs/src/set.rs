@@ -97,9 +97,10 @@ impl std::str::FromStr for SetMode {
 
     /// Parses a mode's name, in either case.
     fn from_str(s: &str) -> Result<Self, Self::Err> {
-        Self::ALL.into_iter().find(|m| m.as_str().eq_ignore_ascii_case(s)).ok_or_else(|| {
-            format!("unknown set mode {s:?}; expected one of full, scan, mixed")
-        })
+        Self::ALL
+            .into_iter()
+            .find(|m| m.as_str().eq_ignore_ascii_case(s))
+            .ok_or_else(|| format!("unknown set mode {s:?}; expected one of full, scan, mixed"))
     }
 }
 
@@ -319,13 +320,15 @@ impl Set {
             .iter()
             .zip(&part_p)
             .zip(&t.presence[i][j])
-            .map(|((m, &k), &present)| {
-                if present {
-                    nearest_of_part(m, k, &q.points, &part_q)
-                } else {
-                    -1
-                }
-            })
+            .map(
+                |((m, &k), &present)| {
+                    if present {
+                        nearest_of_part(m, k, &q.points, &part_q)
+                    } else {
+                        -1
+                    }
+                },
+            )
             .collect();
         let corr_mask = corr_index.iter().map(|&c| c >= 0).collect();
         let joints = t
@@ -472,7 +475,8 @@ fn validate(
         for (i, ((x, f), &s)) in view0.iter().zip(flow).zip(&truth.parts[0]).enumerate() {
             let err = (motions[usize::from(s)].apply(x) - x - f).norm();
             if !(err <= FLOW_TOLERANCE * (1.0 + x.coords.norm())) {
-                let reason = format!("view {k}'s flow of point {i} differs from the motion by {err}");
+                let reason =
+                    format!("view {k}'s flow of point {i} differs from the motion by {err}");
                 return Err(bad("flows", k, reason));
             }
         }
@@ -522,7 +526,10 @@ mod tests {
 
     #[test]
     fn modes_name_their_views() {
-        assert_eq!(SetMode::of(&[ViewKind::Full, ViewKind::Scan, ViewKind::Scan]), Some(SetMode::Mixed));
+        assert_eq!(
+            SetMode::of(&[ViewKind::Full, ViewKind::Scan, ViewKind::Scan]),
+            Some(SetMode::Mixed)
+        );
         assert_eq!(SetMode::of(&[ViewKind::Scan, ViewKind::Full]), None);
         assert_eq!("MIXED".parse::<SetMode>(), Ok(SetMode::Mixed));
         assert!("both".parse::<SetMode>().unwrap_err().contains("full, scan, mixed"));
@@ -559,7 +566,11 @@ mod tests {
             let moving = angles[i] != angles[j];
             assert_eq!(truth.num_parts(), if moving { 2 } else { 1 });
             if moving {
-                assert!((truth.joints[0].value_q - truth.joints[0].value_p - (angles[j] - angles[i])).abs() < 1e-6);
+                assert!(
+                    (truth.joints[0].value_q - truth.joints[0].value_p - (angles[j] - angles[i]))
+                        .abs()
+                        < 1e-6
+                );
             }
         }
     }

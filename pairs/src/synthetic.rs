@@ -7,7 +7,9 @@ use crate::joints::{JointKind, JointTruth};
 use crate::math::{Isometry3, Point3, Real, Vector3};
 use crate::pair::{Pair, PairInput, PairKind, Provenance};
 use crate::parts::PartId;
-use crate::set::{Set, SetInput, SetJoint, SetProvenance, SetTruth, View, ViewKind, ViewProvenance};
+use crate::set::{
+    Set, SetInput, SetJoint, SetProvenance, SetTruth, View, ViewKind, ViewProvenance,
+};
 use crate::transform::{rotation_about, Similarity};
 
 /// A two-part "book": two unit squares sampled on an `side x side` grid each, hinged along
@@ -135,7 +137,8 @@ pub fn cross_instance(pair: Pair, stretch: Real) -> Pair {
 pub fn hinge_set(id: &str, side: usize, angles: &[Real]) -> Set {
     let pair = hinge_pair(id, side, 0.0);
     let (input, truth, _) = pair.into_parts();
-    let object: Vec<Point3> = input.p.points.iter().map(|x| input.p.normalisation.invert(x)).collect();
+    let object: Vec<Point3> =
+        input.p.points.iter().map(|x| input.p.normalisation.invert(x)).collect();
     let parts = truth.part_p;
     let (pivot, axis) = (Point3::new(1.0, 0.0, 0.0), Vector3::y());
     let posed = |angle: Real| -> Vec<Point3> {

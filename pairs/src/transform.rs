@@ -78,7 +78,11 @@ impl Similarity {
     /// The inverse motion, `y -> R^T (y - t) / scale` (the rotation taken as orthonormal).
     pub fn inverse(&self) -> Self {
         let rotation = self.rotation.transpose();
-        Self { rotation, translation: -(rotation * self.translation) / self.scale, scale: 1.0 / self.scale }
+        Self {
+            rotation,
+            translation: -(rotation * self.translation) / self.scale,
+            scale: 1.0 / self.scale,
+        }
     }
 
     /// Largest deviation of `rotation` from an orthonormal matrix with determinant +1.

@@ -245,9 +245,8 @@ fn check_channel<K: RecordKind>(
     let schema = channel.metadata.get("schema").map(String::as_str);
     let version = channel.metadata.get("schema_version").map(String::as_str);
     let (oldest, newest) = K::VERSIONS;
-    let known = version
-        .and_then(|v| v.parse::<u32>().ok())
-        .is_some_and(|v| (oldest..=newest).contains(&v));
+    let known =
+        version.and_then(|v| v.parse::<u32>().ok()).is_some_and(|v| (oldest..=newest).contains(&v));
     if channel.message_encoding != PAIR_ENCODING || schema != Some(K::SCHEMA) || !known {
         let reason = format!(
             "{} has encoding {:?}, schema {schema:?} version {version:?} \

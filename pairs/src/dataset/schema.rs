@@ -325,7 +325,11 @@ pub(crate) fn cloud(id: &str, field: &'static str, rec: CloudRecord) -> Result<C
 }
 
 /// Splits a byte string into 4-byte words, or names the field whose length is off.
-pub(crate) fn words(id: &str, field: &'static str, bytes: &[u8]) -> Result<Vec<[u8; 4]>, PairError> {
+pub(crate) fn words(
+    id: &str,
+    field: &'static str,
+    bytes: &[u8],
+) -> Result<Vec<[u8; 4]>, PairError> {
     let (chunks, rest) = bytes.as_chunks::<4>();
     if rest.is_empty() {
         Ok(chunks.to_vec())
@@ -339,7 +343,11 @@ pub(crate) fn words(id: &str, field: &'static str, bytes: &[u8]) -> Result<Vec<[
     }
 }
 
-pub(crate) fn vectors(id: &str, field: &'static str, bytes: &[u8]) -> Result<Vec<Vector3>, PairError> {
+pub(crate) fn vectors(
+    id: &str,
+    field: &'static str,
+    bytes: &[u8],
+) -> Result<Vec<Vector3>, PairError> {
     let values: Vec<Real> = words(id, field, bytes)?.into_iter().map(f32::from_le_bytes).collect();
     let (triples, rest) = values.as_chunks::<3>();
     if !rest.is_empty() {

@@ -143,10 +143,8 @@ impl SetRecord {
             reason,
         };
         if self.schema_version != SET_SCHEMA_VERSION {
-            let reason = format!(
-                "version {} (this reader knows {SET_SCHEMA_VERSION})",
-                self.schema_version
-            );
+            let reason =
+                format!("version {} (this reader knows {SET_SCHEMA_VERSION})", self.schema_version);
             return Err(bad("schema_version", 0, reason));
         }
         let (k, parts) = (self.views.len(), self.num_parts as usize);
@@ -167,7 +165,9 @@ impl SetRecord {
             let flow = match (v, &view.flow) {
                 (0, None) => vec![Vector3::zeros(); n],
                 (_, Some(bytes)) if v > 0 => vectors(&id, "flow", bytes).map_err(as_set)?,
-                _ => return Err(bad("views", v, "view 0 has no flow, every other view one".into())),
+                _ => {
+                    return Err(bad("views", v, "view 0 has no flow, every other view one".into()))
+                }
             };
             let presence = rows(&view.presence, n, k).map_err(|r| bad("presence", v, r))?;
             let presence = presence
@@ -177,7 +177,8 @@ impl SetRecord {
                     Some(b) => Err(bad("presence", v, format!("value {b} (must be 0 or 1)"))),
                 })
                 .collect::<Result<Vec<Vec<bool>>, _>>()?;
-            let pair_parts = rows(&view.pair_parts, parts, k).map_err(|r| bad("pair_parts", v, r))?;
+            let pair_parts =
+                rows(&view.pair_parts, parts, k).map_err(|r| bad("pair_parts", v, r))?;
             let motions = view
                 .motions
                 .iter()
@@ -241,7 +242,8 @@ mod tests {
     #[test]
     fn a_set_survives_its_record() {
         let set = synthetic::hinge_set("h", 4, &[0.0, 0.3, 0.3, 1.0]);
-        let back = decode_set_record(&encode_set(&set)).expect("decodes").into_set().expect("valid");
+        let back =
+            decode_set_record(&encode_set(&set)).expect("decodes").into_set().expect("valid");
         assert_eq!(back, set);
     }
 

@@ -85,9 +85,8 @@ impl DatasetWriter {
     }
 
     fn start(dir: &Path, overwrite: bool, records: &'static str) -> Result<Self, DatasetError> {
-        let existing = [PAIRS_FILE, SETS_FILE, INDEX_FILE, MANIFEST_FILE]
-            .iter()
-            .any(|f| dir.join(f).exists());
+        let existing =
+            [PAIRS_FILE, SETS_FILE, INDEX_FILE, MANIFEST_FILE].iter().any(|f| dir.join(f).exists());
         if existing && !overwrite {
             return Err(DatasetError::Exists { dir: dir.into() });
         }
@@ -205,7 +204,8 @@ impl DatasetWriter {
                 (None, None) => {}
                 (Some(scan), Some(pngs)) => self.write_images(set.id(), &side, scan, pngs, seq)?,
                 _ => {
-                    let reason = format!("view {k}: a scanned view needs its images, a full one none");
+                    let reason =
+                        format!("view {k}: a scanned view needs its images, a full one none");
                     return Err(DatasetError::Images { pair: set.id().into(), reason });
                 }
             }

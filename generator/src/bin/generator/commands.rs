@@ -122,9 +122,12 @@ pub(crate) fn report(manifest: &Manifest, out: &std::path::Path, started: std::t
         .shard
         .map(|s| format!(" (shard {}/{})", s.index, s.count))
         .unwrap_or_default();
+    let (count, unit) = match manifest.counts.sets {
+        0 => (manifest.counts.pairs, "pairs"),
+        sets => (sets, "sets"),
+    };
     println!(
-        "wrote {} pairs of {} objects{shard} to {} ({:.1} MiB) in {:.2} s",
-        manifest.counts.pairs,
+        "wrote {count} {unit} of {} objects{shard} to {} ({:.1} MiB) in {:.2} s",
         manifest.counts.objects,
         out.display(),
         bytes as f64 / (1 << 20) as f64,

@@ -12,7 +12,7 @@ use generator::gallery::write_gallery;
 use generator::generate::generate_dataset;
 use generator::shard::parse_shard;
 use pairs::dataset::Shard;
-use pairs::PairKind;
+use pairs::{PairKind, SetMode};
 
 mod commands;
 
@@ -100,10 +100,23 @@ struct Sampling {
     /// Kind of pairs: SF2F (full to full), SF2P (full to a virtual scan) or SP2P (scan to
     /// scan, with depth, label and colour images under <out>/images); XF2F and XF2P are
     /// cross-instance: P and Q are two different objects of one category (full to full,
-    /// full to a scan), parts matched by role, no flow (docs/DATASETS.md). The scanner's
-    /// settings are the [scan] table of --config (datasets/sf2p.toml lists them).
+    /// full to a scan), parts matched by role, no flow (docs/DATASETS.md). `sets` writes
+    /// sets of K views of one object instead (--views, --mode; docs/FORMAT.md, "Set
+    /// datasets"). The scanner's settings are the [scan] table of --config
+    /// (datasets/sf2p.toml lists them).
     #[arg(long, value_parser = parse_kind)]
-    kind: Option<PairKind>,
+    kind: Option<KindArg>,
+    /// Views K per set, 2 to 16 [default: 4] (with --kind sets).
+    #[arg(long, value_name = "K")]
+    views: Option<u32>,
+    /// What the views of a set are: full (every view a full shape), scan (every view a
+    /// virtual scan, with images) or mixed (view 0 full, the others scans) [default: full]
+    /// (with --kind sets).
+    #[arg(long, value_parser = parse_mode)]
+    mode: Option<SetMode>,
+    /// Sets per object, each of K distinct states [default: 1] (with --kind sets).
+    #[arg(long)]
+    sets_per_object: Option<u32>,
     /// Pairs of distinct articulation states per object.
     #[arg(long)]
     pairs_per_object: Option<u32>,
@@ -124,6 +137,8 @@ const EXAMPLES: &str = "Examples:
   generator --kind sf2p                                   the paper-size SF2P set, datasets/sf2p
   generator --kind sp2p -n 20 --out /tmp/sp2p             20 objects of scan pairs with images
   generator --kind xf2p                                   two objects of a category, full to scan
+  generator --kind sets --views 4                         sets of 4 full views, datasets/sets
+  generator --kind sets --views 8 --mode scan -n 20       sets of 8 scans with images
   generator --split train -n 20000 --out datasets/train   a training set on disk
   generator --shard 3/8 --out shards/3                    shard 3 of 8 (cluster array job)
   generator merge shards/* --out datasets/sf2f            the shards as one dataset
@@ -206,7 +221,21 @@ fn parse_range(s: &str) -> Result<[f64; 2], String> {
     Ok([lo.trim().parse().map_err(|_| bad())?, hi.trim().parse().map_err(|_| bad())?])
 }
 
-fn parse_kind(s: &str) -> Result<PairKind, String> {
+/// `--kind`: a pair kind, or `sets`.
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum KindArg {
+    Pair(PairKind),
+    Sets,
+}
+
+fn parse_kind(s: &str) -> Result<KindArg, String> {
+    if s.eq_ignore_ascii_case("sets") {
+        return Ok(KindArg::Sets);
+    }
+    s.parse().map(KindArg::Pair).map_err(|e: String| format!("{e}, or sets"))
+}
+
+fn parse_mode(s: &str) -> Result<SetMode, String> {
     s.parse()
 }
 
@@ -246,7 +275,32 @@ impl Args {
         macro_rules! set {
             ($($field:ident),*) => { $(if let Some(v) = &sampling.$field { config.$field = v.clone(); })* };
         }
-        set!(kind, pairs_per_object, points, min_part_points);
+        set!(pairs_per_object, points, min_part_points);
+        match sampling.kind {
+            Some(KindArg::Pair(kind)) => {
+                config.kind = kind;
+                config.sets = None;
+            }
+            Some(KindArg::Sets) => config.sets = Some(config.sets.unwrap_or_default()),
+            None => {}
+        }
+        let set_flags = [
+            ("--views", sampling.views.is_some()),
+            ("--mode", sampling.mode.is_some()),
+            ("--sets-per-object", sampling.sets_per_object.is_some()),
+        ];
+        match &mut config.sets {
+            Some(sets) => {
+                sets.views = sampling.views.unwrap_or(sets.views);
+                sets.mode = sampling.mode.unwrap_or(sets.mode);
+                sets.per_object = sampling.sets_per_object.unwrap_or(sets.per_object);
+            }
+            None => {
+                if let Some((flag, _)) = set_flags.iter().find(|(_, given)| *given) {
+                    bail!("{flag} applies to set datasets: add --kind sets");
+                }
+            }
+        }
         Ok(config)
     }
 }
@@ -307,9 +361,10 @@ fn run(args: Args) -> Result<()> {
         bail!("{} already holds a dataset; pass --force to replace it", out.display());
     }
     let objects = generator::shard::shard_objects(config.objects, args.sampling.shard)?;
+    let unit = if config.sets.is_some() { "sets" } else { "pairs" };
     let bar = progress_bar(
-        u64::from(objects.end - objects.start) * u64::from(config.pairs_per_object),
-        "pairs",
+        u64::from(objects.end - objects.start) * u64::from(config.items_per_object()),
+        unit,
     );
     bar.set_message(format!("generating {}", out.display()));
     let started = std::time::Instant::now();
@@ -325,6 +380,9 @@ fn run(args: Args) -> Result<()> {
 fn assets(args: &Args, config: &GeneratorConfig, root: &std::path::Path) -> Result<()> {
     if args.sampling.shard.is_some() {
         bail!("--shard does not apply to --assets");
+    }
+    if config.sets.is_some() {
+        bail!("--kind sets does not take --assets yet: make sets of the built-in categories");
     }
     let out = args.out.clone().unwrap_or_else(|| {
         PathBuf::from("datasets").join(format!("assets-{}", config.kind.as_str().to_lowercase()))
@@ -382,7 +440,10 @@ fn set_threads(threads: Option<usize>) -> Result<()> {
 
 /// Where a dataset goes unless --out says otherwise.
 fn default_out(config: &GeneratorConfig) -> PathBuf {
-    let kind = config.kind.as_str().to_lowercase();
+    let kind = match config.sets {
+        Some(_) => "sets".to_string(),
+        None => config.kind.as_str().to_lowercase(),
+    };
     match config.split {
         Split::Test => PathBuf::from("datasets").join(kind),
         split => PathBuf::from("datasets").join(format!("{kind}-{split}")),
