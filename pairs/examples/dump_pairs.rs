@@ -1,5 +1,7 @@
 //! Writes every field of every pair of a dataset, as this crate reads it, to one JSON file:
-//! `dump_pairs <dataset> <out.json> [N]` prints "wrote N pairs to <out.json>".
+//! `dump_pairs <dataset> <out.json> [N]` prints "wrote N pairs to <out.json>". For a set
+//! dataset it writes every set (its views' arrays, joints and provenance) with every pair
+//! of two of its views that `Set::pair` gives.
 //!
 //! The Python package's tests (`python/tests/`) compare their reader against this dump, so
 //! the Rust and Python readers of docs/FORMAT.md cannot drift apart. Floats are f32 values
@@ -10,7 +12,7 @@ use std::path::PathBuf;
 
 use pairs::dataset::Dataset;
 use pairs::math::{Matrix3, Point3, Vector3};
-use pairs::{Cloud, Pair, Scan};
+use pairs::{Cloud, Pair, Scan, Set};
 use serde_json::{json, Value};
 
 fn main() -> Result<(), Box<dyn Error>> {
@@ -24,6 +26,17 @@ fn main() -> Result<(), Box<dyn Error>> {
         _ => return Err("usage: dump_pairs <dataset folder> <out.json> [max pairs]".into()),
     };
     let dataset = Dataset::open(dataset)?;
+    if dataset.holds_sets() {
+        let sets = dataset
+            .sets()?
+            .take(limit)
+            .map(|set| set.map(|s| dump_set(&s)))
+            .collect::<Result<Vec<Value>, _>>()?;
+        let out = PathBuf::from(out);
+        std::fs::write(&out, serde_json::to_vec(&sets)?)?;
+        println!("wrote {} sets to {}", sets.len(), out.display());
+        return Ok(());
+    }
     let pairs = dataset
         .pairs()?
         .take(limit)
@@ -65,6 +78,52 @@ fn dump(pair: &Pair) -> Value {
         "provenance": pair.provenance(),
         "scan_p": pair.scans().p.as_ref().map(scan),
         "scan_q": pair.scans().q.as_ref().map(scan),
+    })
+}
+
+fn dump_set(set: &Set) -> Value {
+    let (input, truth) = (set.input(), set.truth());
+    let views: Vec<Value> = input
+        .views
+        .iter()
+        .enumerate()
+        .map(|(k, view)| {
+            json!({
+                "kind": view.kind.as_str(),
+                "cloud": cloud(&view.cloud),
+                "parts": truth.parts[k],
+                "scale": truth.motions[k].first().map_or(1.0, |m| m.scale),
+                "rotations": truth.motions[k].iter().map(|m| rows(&m.rotation)).collect::<Vec<_>>(),
+                "translations":
+                    truth.motions[k].iter().map(|m| vector(&m.translation)).collect::<Vec<_>>(),
+                "flow": truth.flows[k].iter().map(vector).collect::<Vec<_>>(),
+                "presence": truth.presence[k],
+                "pair_parts": truth.pair_parts[k],
+                "scan": set.scans()[k].as_ref().map(scan),
+            })
+        })
+        .collect();
+    let n = set.len();
+    let pairs: Vec<Value> = (0..n)
+        .flat_map(|i| (0..n).map(move |j| (i, j)))
+        .filter_map(|(i, j)| set.pair(i, j).ok())
+        .map(|pair| dump(&pair))
+        .collect();
+    json!({
+        "id": set.id(),
+        "num_parts": truth.num_parts(),
+        "views": views,
+        "joints": truth.joints.iter().map(|j| json!({
+            "name": j.name,
+            "part": j.part,
+            "parent": j.parent,
+            "kind": j.kind.as_str(),
+            "axis": j.axis.iter().map(vector).collect::<Vec<_>>(),
+            "pivot": j.pivot.iter().map(point).collect::<Vec<_>>(),
+            "value": j.value,
+        })).collect::<Vec<_>>(),
+        "provenance": set.provenance(),
+        "pairs": pairs,
     })
 }
 

@@ -1,8 +1,9 @@
 """Read part-induction datasets and write prediction files for the benchmark, from Python.
 
 The formats are docs/FORMAT.md. :func:`open_dataset` streams a dataset's pairs as numpy
-arrays, :class:`PredictionWriter` writes a method's predictions for ``evaluator score``, and
-``part_induction.torch`` (which needs PyTorch; importing this package does not import it)
+arrays, :func:`open_set_dataset` the sets of K views of a set dataset (each set's pairs
+with :meth:`Set.pair`), :class:`PredictionWriter` writes a method's predictions for
+``evaluator score``, and ``part_induction.torch`` (which needs PyTorch; importing this package does not import it)
 wraps a dataset for a ``DataLoader``.
 """
 
@@ -16,6 +17,7 @@ from .dataset import (
     collate_numpy,
     open_dataset,
 )
+from .sets import Set, SetDataset, SetJoint, SetView, open_set_dataset
 from .predictions import (
     PredictedJoint,
     PredictionError,
@@ -30,10 +32,15 @@ __all__ = [
     "Motions",
     "Pair",
     "PairInput",
+    "Set",
+    "SetDataset",
+    "SetJoint",
+    "SetView",
     "PredictedJoint",
     "PredictionError",
     "PredictionWriter",
     "collate_numpy",
     "open_dataset",
+    "open_set_dataset",
     "read_predictions",
 ]

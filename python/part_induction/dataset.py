@@ -379,6 +379,14 @@ def iter_records(path: PathLike) -> Iterator[Tuple[int, Dict[str, Any]]]:
 def iter_messages(path: PathLike) -> Iterator[Tuple[int, bytes]]:
     """Streams the raw bytes of the ``/pair`` messages of a ``pairs.mcap`` file in file order,
     with their zero-based index (see :func:`iter_records`)."""
+    return _iter_topic(path, PAIR_TOPIC, _check_channel)
+
+
+def _iter_topic(
+    path: PathLike, topic: str, check: Any
+) -> Iterator[Tuple[int, bytes]]:
+    """The raw messages of ``topic`` in file order; ``check(path, channel)`` vets its
+    channel."""
     # A linear pass, not the seeking reader: it keeps file order, needs no summary section,
     # and on a truncated file fails after the last whole chunk, which names where it broke.
     channel: Optional[int] = None
@@ -392,17 +400,17 @@ def iter_messages(path: PathLike) -> Iterator[Tuple[int, bytes]]:
                 break
             except Exception as e:  # McapError, CRCValidationError, zstd errors: a broken file
                 raise DatasetError(
-                    f"{path}: not a readable MCAP file after {index} {PAIR_TOPIC} messages "
+                    f"{path}: not a readable MCAP file after {index} {topic} messages "
                     f"(truncated or corrupt?): {type(e).__name__} {e}".rstrip()
                 ) from e
-            if isinstance(record, Channel) and record.topic == PAIR_TOPIC:
-                _check_channel(path, record)
+            if isinstance(record, Channel) and record.topic == topic:
+                check(path, record)
                 channel = record.id
             elif isinstance(record, Message) and record.channel_id == channel:
                 yield index, record.data
                 index += 1
     if channel is None:
-        raise DatasetError(f"{path}: wrong schema: no {PAIR_TOPIC} channel")
+        raise DatasetError(f"{path}: wrong schema: no {topic} channel")
 
 
 def collate_numpy(pairs: Sequence[Pair]) -> Dict[str, Any]:
@@ -747,7 +755,7 @@ def _check_channel(path: PathLike, channel: Channel) -> None:
         )
 
 
-def _read_manifest(folder: Path) -> Dict[str, Any]:
+def _read_manifest(folder: Path, records: str = PAIRS_FILE) -> Dict[str, Any]:
     path = folder / MANIFEST_FILE
     if not path.is_file():
         raise DatasetError(
@@ -763,9 +771,15 @@ def _read_manifest(folder: Path) -> Dict[str, Any]:
             f"{path}: invalid manifest: format {fmt[0]!r} version {fmt[1]!r} (this reader "
             f"knows {DATASET_FORMAT!r} version {DATASET_FORMAT_VERSION})"
         )
+    files = manifest.get("files")
+    if records == PAIRS_FILE and isinstance(files, dict) and "sets.mcap" in files:
+        raise DatasetError(
+            f"{folder} holds sets (sets.mcap), not pairs: open it with "
+            "part_induction.open_set_dataset"
+        )
     try:
-        manifest["files"][PAIRS_FILE]["sha256"]
-        int(manifest["counts"]["pairs"])
+        manifest["files"][records]["sha256"]
+        int(manifest["counts"]["pairs" if records == PAIRS_FILE else "sets"])
     except (KeyError, TypeError, ValueError) as e:
         raise DatasetError(f"{path}: invalid manifest: lacks {e}") from e
     return manifest

@@ -86,3 +86,13 @@ def python_env() -> Dict[str, str]:
     env = dict(os.environ)
     env["PYTHONPATH"] = os.pathsep.join(filter(None, [str(PYTHON_DIR), env.get("PYTHONPATH")]))
     return env
+
+
+@pytest.fixture(scope="session")
+def sets_dir(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """3 mixed sets (3 objects) of 4 views of 64 points: view 0 a full shape, views 1-3
+    scans with images (`generator --kind sets`)."""
+    out = tmp_path_factory.mktemp("data") / "py-sets"
+    args = ["--kind", "sets", "--views", "4", "--mode", "mixed", "-n", "3", "-p", "64"]
+    run_cargo("run", "-q", "-p", "generator", "--", *args, "--seed", "7", "--out", str(out))
+    return out
