@@ -332,7 +332,9 @@ pub fn generate_dataset(
     Ok(writer.finish(DatasetOrigin { left_out, ..dataset_origin(config, shard) })?)
 }
 
-/// [`generate_dataset`] for a set dataset: every object's sets, in object order.
+/// [`generate_dataset`] for a set dataset: every object's sets, in object order; an object
+/// that cannot give its sets (a scanned view misses a small part in every draw) is left
+/// out and counted in the manifest's `left_out`.
 fn generate_set_dataset(
     config: &GeneratorConfig,
     dir: &Path,
@@ -342,15 +344,28 @@ fn generate_set_dataset(
 ) -> Result<Manifest, GenerateError> {
     let objects: Vec<u32> = shard_objects(config.objects, shard)?.collect();
     let mut writer = DatasetWriter::create_sets(dir, overwrite)?;
+    let mut left_out = std::collections::BTreeMap::new();
     for batch in objects.chunks(BATCH_OBJECTS) {
-        let generated: Vec<Vec<GeneratedSet>> =
-            batch.par_iter().map(|&i| object_sets(config, i, true)).collect::<Result<_, _>>()?;
-        for set in generated.iter().flatten() {
-            writer.write_set(&set.set, &set.images)?;
-            progress(writer.len());
+        let generated: Vec<Option<Vec<GeneratedSet>>> = batch
+            .par_iter()
+            .map(|&i| match object_sets(config, i, true) {
+                Err(GenerateError::TooFewSets { .. }) => Ok(None),
+                other => other.map(Some),
+            })
+            .collect::<Result<_, _>>()?;
+        for (&i, sets) in batch.iter().zip(&generated) {
+            let Some(sets) = sets else {
+                let category = build_object(config, i)?.category;
+                *left_out.entry(category).or_insert(0) += 1;
+                continue;
+            };
+            for set in sets {
+                writer.write_set(&set.set, &set.images)?;
+                progress(writer.len());
+            }
         }
     }
-    Ok(writer.finish(dataset_origin(config, shard))?)
+    Ok(writer.finish(DatasetOrigin { left_out, ..dataset_origin(config, shard) })?)
 }
 
 /// The manifest's record of what made a dataset (or one shard of it).

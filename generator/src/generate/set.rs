@@ -15,16 +15,16 @@ use crate::config::{GeneratorConfig, SetsConfig};
 use crate::kinematics::link_poses;
 use crate::label::{merge_links, merge_links_over, Parts};
 use crate::objects::ArticulatedObject;
-use crate::protocol::global_pose;
+use crate::protocol::{draw_state, global_pose};
 use crate::sampling::SurfaceSampler;
 use crate::scan::images;
 use crate::seed::{rng_for, Stream};
 
 use super::pair::{object_size, observe_side, presence, Observation};
-use super::{build_object, configuration, object_states, GenerateError, GENERATOR_VERSION};
+use super::{build_object, configuration, GenerateError, GENERATOR_VERSION};
 
 /// Draws of K states tried per set before the object is declared unable to give it.
-pub const SET_ATTEMPTS: u32 = 16;
+pub const SET_ATTEMPTS: u32 = 32;
 
 /// A generated set with the scene it was made from, for checks against the pair generator.
 #[derive(Debug, Clone)]
@@ -52,7 +52,7 @@ pub fn object_sets(
     let sets = config.sets.clone().unwrap_or_default();
     let object = build_object(config, index)?;
     let sampler = SurfaceSampler::new(&object);
-    let states = object_states(config, &object, index);
+    let states = set_states(config, &object, index, sets.views as usize);
     let k = sets.views as usize;
     let mut made = Vec::with_capacity(sets.per_object as usize);
     for s in 0..sets.per_object {
@@ -91,6 +91,34 @@ pub fn object_sets(
         }
     }
     Ok(made)
+}
+
+/// Extra draws past the object's `states_per_object` states allowed to find K distinct
+/// ones.
+const EXTRA_STATES: usize = 64;
+
+/// The states a set draws its views from: the object's states (what pairs'
+/// `articulation_p` / `_q` index), continued with the same stream's next draws while fewer
+/// than `views` of them are distinct (a simple object may sit at rest in most of its
+/// states), so that state `i` is the same state for pairs and sets.
+pub fn set_states(
+    config: &GeneratorConfig,
+    object: &ArticulatedObject,
+    index: u32,
+    views: usize,
+) -> Vec<Vec<Real>> {
+    let mut rng = rng_for(config.seed, u64::from(index), Stream::States);
+    let mut states: Vec<Vec<Real>> = Vec::new();
+    let distinct = |states: &[Vec<Real>]| {
+        states.iter().enumerate().filter(|(i, s)| !states[..*i].contains(s)).count()
+    };
+    while states.len() < config.states_per_object as usize
+        || (distinct(&states) < views
+            && states.len() < config.states_per_object as usize + EXTRA_STATES)
+    {
+        states.push(draw_state(object, config.rest_probability, &mut rng));
+    }
+    states
 }
 
 /// One object of a set dataset and what every set of it needs.
@@ -380,6 +408,21 @@ mod tests {
         }
     }
 
+    /// A set's states begin with the object's (the pairs' states), and run on until K of
+    /// them are distinct, even when most are at rest.
+    #[test]
+    fn set_states_extend_the_objects_states() {
+        let config = GeneratorConfig { rest_probability: 0.6, ..config(SetMode::Full, 6) };
+        for index in 0..8 {
+            let object = build_object(&config, index).expect("an object");
+            let states = set_states(&config, &object, index, 6);
+            let first = crate::generate::object_states(&config, &object, index);
+            assert_eq!(states[..first.len()], first[..]);
+            let distinct = states.iter().enumerate().filter(|(i, s)| !states[..*i].contains(s));
+            assert!(distinct.count() >= 6, "object {index}: {} states", states.len());
+        }
+    }
+
     /// Every pair of views of a set has the ground truth the pair generator's labelling
     /// gives the same two observations: the same parts, correspondences and joints, and
     /// the same motions and flow up to the composition's rounding.
@@ -393,7 +436,7 @@ mod tests {
             for index in 0..config.objects {
                 let object = build_object(&config, index).expect("an object");
                 let sampler = SurfaceSampler::new(&object);
-                let states = object_states(&config, &object, index);
+                let states = set_states(&config, &object, index, views as usize);
                 let scene = SetScene {
                     config: &config,
                     sets: &sets,
