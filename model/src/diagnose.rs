@@ -223,7 +223,7 @@ pub fn diagnose(
             }),
     )
     .chain(["true flow: the true same-part matrix".to_string()])
-    .chain([net.seg_points(), net.corr_points()].iter().flat_map(|n| {
+    .chain(ceiling_sizes(net).iter().flat_map(|n| {
         [
             format!("ceiling: true labels at {n} points, interpolated (argmax)"),
             format!("ceiling: true labels at {n} points, interpolated (graph cut)"),
@@ -309,7 +309,7 @@ pub fn diagnose(
         add_pass(&mut sums, &mut row, Some((&same, score)))?;
         // The subset ceiling.
         let k = truth.part_p.iter().copied().max().map_or(1, |m| m as usize + 1);
-        for n in [net.seg_points(), net.corr_points()] {
+        for n in ceiling_sizes(net) {
             let subset = farthest_point_sampling(&plain, n.min(plain.len())).map_err(network)?;
             let sub: Vec<[f32; 3]> = subset.iter().map(|&i| plain[i]).collect();
             let one_hot: Vec<f32> = subset
@@ -345,4 +345,12 @@ pub fn diagnose(
         rows: names.into_iter().zip(&sums).map(|(name, s)| s.row(name)).collect(),
         scale: ScaleSummary { median: at(0.5), p90: at(0.9), max: at(1.0) },
     })
+}
+
+/// The subset sizes of the ceiling rows: the segmentation subset, then the correspondence
+/// subset when it differs (one row each, not two equal ones).
+fn ceiling_sizes(net: &PartInductionNet) -> Vec<usize> {
+    let mut sizes = vec![net.seg_points(), net.corr_points()];
+    sizes.dedup();
+    sizes
 }
