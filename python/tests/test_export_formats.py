@@ -171,3 +171,51 @@ def test_exports_are_deterministic(
         assert files == sorted(p.relative_to(two) for p in two.rglob("*") if p.is_file())
         for rel in files:
             assert (one / rel).read_bytes() == (two / rel).read_bytes(), rel
+
+
+def test_mbs_npz_of_a_set_holds_all_k_views(
+    sets_dir: Path, cargo: Callable[..., str], tmp_path: Path
+) -> None:
+    """A set dataset exports K views per file, as MultiBodySync's SAPIEN files hold them:
+    one labelling for all views, and its compute_flow from view 0 to every view k
+    reproduces the set's ground truth."""
+    from part_induction import open_set_dataset
+
+    out = tmp_path / "mbs-sets"
+    cargo(*export_args("mbs-npz", sets_dir, out))
+    sets = list(open_set_dataset(sets_dir))
+    assert (out / "ids.txt").read_text().splitlines() == [s.id for s in sets]
+    for i, item in enumerate(sets):
+        datum = np.load(out / "data" / f"{i:06d}.npz", allow_pickle=True)
+        pc, segm, trans = datum["pc"], datum["segm"], datum["trans"].item()
+        k, n = len(item), len(item.views[0].points)
+        assert pc.shape == (k, n, 3) and pc.dtype == np.float32
+        assert segm.shape == (k, n) and segm.dtype == np.int64
+        assert list(trans) == ["cam", *range(1, item.num_parts + 1)]
+        assert all(len(views) == k for views in trans.values())
+        v0 = item.views[0]
+        for v, view in enumerate(item.views):
+            np.testing.assert_array_equal(segm[v], view.parts.astype(np.int64) + 1)
+            common = (view.points.astype(np.float64) * view.scale + view.centre - v0.centre)
+            np.testing.assert_allclose(pc[v], common / v0.scale, rtol=0, atol=ATOL)
+            # View 0 moved by the set's flow into view v's state, in the common frame.
+            moved = v0.points.astype(np.float64) + view.flow
+            moved = (moved * view.scale + view.centre - v0.centre) / v0.scale
+            for part in range(1, item.num_parts + 1):
+                mask = segm[0] == part
+                mapping = (np.linalg.inv(trans["cam"][v]) @ trans[part][v]
+                           @ np.linalg.inv(trans[part][0]) @ trans["cam"][0])
+                points = pc[0][mask].astype(np.float64)
+                flowed = points @ mapping[:3, :3].T + mapping[:3, 3]
+                np.testing.assert_allclose(flowed, moved[mask], rtol=0, atol=1e-5,
+                                           err_msg=f"{item.id} view {v} part {part}")
+
+
+def test_yi_mat_refuses_a_set_dataset(
+    sets_dir: Path, cargo: Callable[..., str], tmp_path: Path
+) -> None:
+    result = subprocess.run(
+        ["cargo", *export_args("yi-mat", sets_dir, tmp_path / "mat")], cwd=REPO,
+        stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+    )
+    assert result.returncode != 0 and "mbs-npz" in result.stderr

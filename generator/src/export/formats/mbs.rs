@@ -16,7 +16,7 @@
 use std::io::{Cursor, Write};
 
 use nalgebra::{Matrix3, Matrix4, Rotation3, Vector3};
-use pairs::Pair;
+use pairs::{Pair, Set};
 use zip::write::SimpleFileOptions;
 use zip::{CompressionMethod, DateTime, ZipWriter};
 
@@ -115,6 +115,55 @@ pub(super) fn npz(pair: &Pair) -> Result<Vec<u8>, FormatError> {
     let entries = [
         ("pc.npy", npy::f32_array(&[2, n, 3], &pc)),
         ("segm.npy", npy::i64_array(&[2, n], &segm)),
+        ("trans.npy", npy::object_scalar(&pickle::numpy_dict_of_matrix_lists(&trans))),
+    ];
+    Ok(zip_stored(&entries).expect("writing a ZIP into memory cannot fail"))
+}
+
+/// The `.npz` file of one set of K views: `pc` (K, N, 3), every view mapped into view 0's
+/// normalised frame; `segm` (K, N), set parts plus 1 (one labelling for all K views);
+/// `trans`: `cam` K identities and, for set part s, K transforms: the identity, then each
+/// view k's motion of the part from view 0 (`Set::pair(0, k)`'s motion of the pair part
+/// holding s, mapped into the common frame). MultiBodySync's flow from view i to view j is
+/// then `T[s][j] · inv(T[s][i])`.
+pub(super) fn set_npz(set: &Set) -> Result<Vec<u8>, FormatError> {
+    let shape = |reason: String| FormatError::Shape { pair: set.id().into(), reason };
+    let (input, truth) = (set.input(), set.truth());
+    let n = input.views[0].cloud.len();
+    if let Some(k) = input.views.iter().position(|v| v.cloud.len() != n) {
+        return Err(shape(format!(
+            "view 0 has {n} points and view {k} {}; mbs-npz needs one point count for all views",
+            input.views[k].cloud.len()
+        )));
+    }
+    let k = set.len();
+    let mut pc = Vec::with_capacity(3 * n * k);
+    for p in &input.views[0].cloud.points {
+        pc.extend_from_slice(p.coords.as_slice());
+    }
+    let identity = rows(&Matrix4::identity());
+    let mut per_part: Vec<Vec<pickle::Matrix4>> = vec![vec![identity]; truth.num_parts()];
+    for view in 1..k {
+        let pair = set.pair(0, view).map_err(|e| shape(e.to_string()))?;
+        let (a, b) = q_to_common(&pair);
+        for q in &input.views[view].cloud.points {
+            let common = q.coords.cast::<f64>() * a + b;
+            pc.extend(common.iter().map(|&c| c as f32));
+        }
+        let transforms = part_transforms(&pair)?;
+        for (s, views) in per_part.iter_mut().enumerate() {
+            views.push(rows(&transforms[usize::from(truth.pair_parts[0][view][s])]));
+        }
+    }
+    let segm: Vec<i64> = truth.parts.iter().flatten().map(|&s| i64::from(s) + 1).collect();
+    let mut trans = vec![(Key::Text("cam".into()), vec![identity; k])];
+    for (s, views) in per_part.into_iter().enumerate() {
+        let key = i32::try_from(s + 1).expect("at most 256 parts");
+        trans.push((Key::Int(key), views));
+    }
+    let entries = [
+        ("pc.npy", npy::f32_array(&[k, n, 3], &pc)),
+        ("segm.npy", npy::i64_array(&[k, n], &segm)),
         ("trans.npy", npy::object_scalar(&pickle::numpy_dict_of_matrix_lists(&trans))),
     ];
     Ok(zip_stored(&entries).expect("writing a ZIP into memory cannot fail"))

@@ -68,7 +68,7 @@ impl std::str::FromStr for Format {
 /// What an export wrote.
 #[derive(Debug, Clone)]
 pub struct FormatSummary {
-    /// Pairs exported.
+    /// Pairs (or sets) exported.
     pub pairs: usize,
     /// Files written.
     pub files: usize,
@@ -174,6 +174,11 @@ pub fn export_dataset(
     let dir = staging.path();
     let mut count = 0usize;
     let sizes = match format {
+        Format::YiMat if data.holds_sets() => {
+            let path = dataset.join(pairs::dataset::MANIFEST_FILE);
+            let reason = "a set dataset: yi-mat holds pairs (export it as mbs-npz)".to_string();
+            return Err(FormatError::Manifest { path, reason });
+        }
         Format::YiMat => {
             let mut export = yi::YiExport::default();
             for pair in data.pairs()? {
@@ -188,14 +193,25 @@ pub fn export_dataset(
             std::fs::create_dir(&files).map_err(OutputError::io(&files))?;
             let mut sizes = Vec::new();
             let mut ids = String::new();
-            for pair in data.pairs()? {
-                let pair = pair?;
+            let mut add = |id: &str, npz: Vec<u8>| -> Result<(), FormatError> {
                 let path = files.join(format!("{count:06}.npz"));
-                sizes.push(write_file(&path, &mbs::npz(&pair)?)?);
-                ids.push_str(pair.id());
+                sizes.push(write_file(&path, &npz)?);
+                ids.push_str(id);
                 ids.push('\n');
                 count += 1;
                 progress(count as u64);
+                Ok(())
+            };
+            if data.holds_sets() {
+                for set in data.sets()? {
+                    let set = set?;
+                    add(set.id(), mbs::set_npz(&set)?)?;
+                }
+            } else {
+                for pair in data.pairs()? {
+                    let pair = pair?;
+                    add(pair.id(), mbs::npz(&pair)?)?;
+                }
             }
             let split = split.expect("mbs-npz reads the split first");
             let meta = mbs::meta_json(split, count);
