@@ -181,8 +181,8 @@ pub enum DatasetError {
     InvalidSet {
         /// The file.
         path: PathBuf,
-        /// The broken invariant.
-        source: SetError,
+        /// The broken invariant (boxed: a set's error is larger than the others).
+        source: Box<SetError>,
     },
     /// The file ended before the number of pairs the manifest announces.
     #[error("{path}: holds {found} pairs but the manifest announces {expected} (truncated?)")]

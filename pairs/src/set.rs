@@ -286,18 +286,13 @@ impl Set {
         }
         let id = self.pair_id(i, j);
         let (vi, vj) = (&self.input.views[i], &self.input.views[j]);
-        let kind = match (vi.kind, vj.kind) {
-            _ if i == j => {
-                let reason = "a pair needs two different views".to_string();
-                return Err(SetError::NoPair { set: self.id().into(), i, j, reason });
-            }
-            (ViewKind::Full, ViewKind::Full) => PairKind::Sf2f,
-            (ViewKind::Full, ViewKind::Scan) => PairKind::Sf2p,
-            (ViewKind::Scan, ViewKind::Scan) => PairKind::Sp2p,
-            (ViewKind::Scan, ViewKind::Full) => {
-                let reason = "no pair kind has a scan as P and a full shape as Q".to_string();
-                return Err(SetError::NoPair { set: self.id().into(), i, j, reason });
-            }
+        if i == j {
+            let reason = "a pair needs two different views".to_string();
+            return Err(SetError::NoPair { set: self.id().into(), i, j, reason });
+        }
+        let Some(kind) = pair_kind(vi.kind, vj.kind) else {
+            let reason = "no pair kind has a scan as P and a full shape as Q".to_string();
+            return Err(SetError::NoPair { set: self.id().into(), i, j, reason });
         };
         let t = &self.truth;
         let groups = &t.pair_parts[i][j];
@@ -379,6 +374,17 @@ impl Set {
     /// Splits the set into its parts.
     pub fn into_parts(self) -> (SetInput, SetTruth, SetProvenance, Vec<Option<Scan>>) {
         (self.input, self.truth, self.provenance, self.scans)
+    }
+}
+
+/// The kind of the pair of a view of kind `p` (as P) and one of kind `q` (as Q): SF2F,
+/// SF2P or SP2P; `None` for a scan as P with a full Q (no kind has it).
+pub fn pair_kind(p: ViewKind, q: ViewKind) -> Option<PairKind> {
+    match (p, q) {
+        (ViewKind::Full, ViewKind::Full) => Some(PairKind::Sf2f),
+        (ViewKind::Full, ViewKind::Scan) => Some(PairKind::Sf2p),
+        (ViewKind::Scan, ViewKind::Scan) => Some(PairKind::Sp2p),
+        (ViewKind::Scan, ViewKind::Full) => None,
     }
 }
 
@@ -474,7 +480,8 @@ fn validate(
     for (k, (flow, motions)) in truth.flows.iter().zip(&truth.motions).enumerate() {
         for (i, ((x, f), &s)) in view0.iter().zip(flow).zip(&truth.parts[0]).enumerate() {
             let err = (motions[usize::from(s)].apply(x) - x - f).norm();
-            if !(err <= FLOW_TOLERANCE * (1.0 + x.coords.norm())) {
+            // A NaN flow fails too: it is not within the tolerance.
+            if err.is_nan() || err > FLOW_TOLERANCE * (1.0 + x.coords.norm()) {
                 let reason =
                     format!("view {k}'s flow of point {i} differs from the motion by {err}");
                 return Err(bad("flows", k, reason));

@@ -154,7 +154,10 @@ impl RecordKind for Sets {
             message,
             reason,
         })?;
-        record.into_set().map_err(|source| DatasetError::InvalidSet { path: path.into(), source })
+        record.into_set().map_err(|source| DatasetError::InvalidSet {
+            path: path.into(),
+            source: Box::new(source),
+        })
     }
 }
 

@@ -7,11 +7,13 @@ pub mod flow;
 pub mod joints;
 pub mod motion;
 pub mod segmentation;
+pub mod sets;
 
 pub use flow::{end_point_errors, epe, pcc, pcc_at, pcc_auc, PCC_STEP, PCC_THRESHOLDS};
 pub use joints::{joint_errors, joint_errors_of, line_to_line_distance, JointError};
 pub use motion::{motion_errors, segment_count, MotionErrors};
 pub use segmentation::{matched_iou, max_assignment, rand_index, PartMatching};
+pub use sets::{score_set, SetScores};
 
 /// Inputs a metric cannot score.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
