@@ -29,6 +29,11 @@ fn pair_reader_inputs_are_read_or_refused() {
 }
 
 #[test]
+fn set_reader_inputs_are_read_or_refused() {
+    replay("set_reader", pairs::fuzz::read_sets);
+}
+
+#[test]
 fn prediction_reader_inputs_are_read_or_refused() {
     replay("prediction_reader", pairs::fuzz::read_predictions);
 }
@@ -49,8 +54,8 @@ fn write_seeds() {
     let pair = synthetic::hinge_pair("seed-0", 4, 0.5);
     let mut writer = DatasetWriter::create(tmp.path(), false).expect("create");
     writer.write(&pair).expect("write");
-    let origin = DatasetOrigin {
-        generator_version: "seed".into(),
+    let origin_of = |version: &str| DatasetOrigin {
+        generator_version: version.into(),
         seed: 0,
         config: serde_json::json!({}),
         splits: Default::default(),
@@ -58,7 +63,7 @@ fn write_seeds() {
         assets: Vec::new(),
         left_out: Default::default(),
     };
-    writer.finish(origin).expect("finish");
+    writer.finish(origin_of("seed")).expect("finish");
     let pairs_file = std::fs::read(tmp.path().join(PAIRS_FILE)).expect("written");
 
     let predictions = tmp.path().join("predictions.mcap");
@@ -80,9 +85,17 @@ fn write_seeds() {
     writer.finish().expect("finish");
     let prediction_file = std::fs::read(&predictions).expect("written");
 
+    let sets_dir = tmp.path().join("sets");
+    let mut writer = DatasetWriter::create_sets(&sets_dir, false).expect("create");
+    let set = synthetic::hinge_set("seed-set", 3, &[0.0, 0.4, 0.4]);
+    writer.write_set(&set, &[None, None, None]).expect("write");
+    writer.finish(origin_of("seed")).expect("finish");
+    let sets_file = std::fs::read(sets_dir.join(pairs::dataset::SETS_FILE)).expect("written");
+
     for (target, bytes, count) in [
         ("pair_reader", pairs_file, "1-pairs"),
         ("prediction_reader", prediction_file, "3-records"),
+        ("set_reader", sets_file, "1-pairs"),
     ] {
         let dir = root.join(target);
         std::fs::create_dir_all(&dir).expect("a folder");
