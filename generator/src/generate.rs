@@ -310,25 +310,15 @@ pub fn generate_dataset(
     if config.sets.is_some() {
         return generate_set_dataset(config, dir, overwrite, shard, progress);
     }
-    let objects: Vec<u32> = shard_objects(config.objects, shard)?.collect();
-    let categories = config.categories()?;
     let mut writer = DatasetWriter::create(dir, overwrite)?;
-    let mut left_out = std::collections::BTreeMap::new();
-    for batch in objects.chunks(BATCH_OBJECTS) {
-        let generated: Vec<Option<Vec<GeneratedPair>>> =
-            batch.par_iter().map(|&i| dataset_object_pairs(config, i)).collect::<Result<_, _>>()?;
-        for (&i, pairs) in batch.iter().zip(&generated) {
-            let Some(pairs) = pairs else {
-                let category = categories[i as usize % categories.len()].name;
-                *left_out.entry(category.to_owned()).or_insert(0) += 1;
-                continue;
-            };
-            for pair in pairs {
-                writer.write_scanned(&pair.pair, &pair.images)?;
-                progress(writer.len());
-            }
-        }
-    }
+    let left_out = write_objects(
+        config,
+        shard,
+        &mut writer,
+        |i| dataset_object_pairs(config, i),
+        |writer, pair: &GeneratedPair| writer.write_scanned(&pair.pair, &pair.images),
+        &mut progress,
+    )?;
     Ok(writer.finish(DatasetOrigin { left_out, ..dataset_origin(config, shard) })?)
 }
 
@@ -342,30 +332,51 @@ fn generate_set_dataset(
     shard: Option<Shard>,
     mut progress: impl FnMut(u64),
 ) -> Result<Manifest, GenerateError> {
-    let objects: Vec<u32> = shard_objects(config.objects, shard)?.collect();
     let mut writer = DatasetWriter::create_sets(dir, overwrite)?;
+    let left_out = write_objects(
+        config,
+        shard,
+        &mut writer,
+        |i| match object_sets(config, i, true) {
+            Err(GenerateError::TooFewSets { .. }) => Ok(None),
+            other => other.map(Some),
+        },
+        |writer, set: &GeneratedSet| writer.write_set(&set.set, &set.images),
+        &mut progress,
+    )?;
+    Ok(writer.finish(DatasetOrigin { left_out, ..dataset_origin(config, shard) })?)
+}
+
+/// Makes the items (pairs or sets) of the dataset's objects (or one shard's) in parallel
+/// batches and writes them in object order; `make` gives `None` for an object left out,
+/// counted per category in the returned map.
+fn write_objects<T: Send>(
+    config: &GeneratorConfig,
+    shard: Option<Shard>,
+    writer: &mut DatasetWriter,
+    make: impl Fn(u32) -> Result<Option<Vec<T>>, GenerateError> + Sync,
+    write: impl Fn(&mut DatasetWriter, &T) -> Result<(), DatasetError>,
+    progress: &mut impl FnMut(u64),
+) -> Result<std::collections::BTreeMap<String, u32>, GenerateError> {
+    let objects: Vec<u32> = shard_objects(config.objects, shard)?.collect();
+    let categories = config.categories()?;
     let mut left_out = std::collections::BTreeMap::new();
     for batch in objects.chunks(BATCH_OBJECTS) {
-        let generated: Vec<Option<Vec<GeneratedSet>>> = batch
-            .par_iter()
-            .map(|&i| match object_sets(config, i, true) {
-                Err(GenerateError::TooFewSets { .. }) => Ok(None),
-                other => other.map(Some),
-            })
-            .collect::<Result<_, _>>()?;
-        for (&i, sets) in batch.iter().zip(&generated) {
-            let Some(sets) = sets else {
-                let category = build_object(config, i)?.category;
-                *left_out.entry(category).or_insert(0) += 1;
+        let generated: Vec<Option<Vec<T>>> =
+            batch.par_iter().map(|&i| make(i)).collect::<Result<_, _>>()?;
+        for (&i, items) in batch.iter().zip(&generated) {
+            let Some(items) = items else {
+                let category = categories[i as usize % categories.len()].name;
+                *left_out.entry(category.to_owned()).or_insert(0) += 1;
                 continue;
             };
-            for set in sets {
-                writer.write_set(&set.set, &set.images)?;
+            for item in items {
+                write(writer, item)?;
                 progress(writer.len());
             }
         }
     }
-    Ok(writer.finish(DatasetOrigin { left_out, ..dataset_origin(config, shard) })?)
+    Ok(left_out)
 }
 
 /// The manifest's record of what made a dataset (or one shard of it).

@@ -229,7 +229,56 @@ class Pair:
         return PairInput(self.id, self.kind, self.p, self.q)
 
 
-class Dataset:
+class _Folder:
+    """What a pair dataset and a set dataset folder share: the manifest's checksums and the
+    scans' images."""
+
+    path: Path
+    manifest: Dict[str, Any]
+
+    def verify(self) -> None:
+        """Checks every file's size and sha256 against the manifest.
+
+        Raises
+        ------
+        DatasetError
+            Naming the first file that differs or is missing.
+        """
+        for name, entry in self.manifest["files"].items():
+            path = self.path / name
+            try:
+                size = path.stat().st_size
+                digest = hashlib.sha256()
+                with open(path, "rb") as f:
+                    for block in iter(lambda: f.read(1 << 20), b""):
+                        digest.update(block)
+            except OSError as e:
+                raise DatasetError(f"{path}: {e}") from e
+            if size != entry["bytes"] or digest.hexdigest() != entry["sha256"].lower():
+                raise DatasetError(
+                    f"{path}: size or sha256 differs from the manifest "
+                    "(the file changed after the manifest was written)"
+                )
+
+    def _read_images(
+        self, scan: Optional[Dict[str, Any]], decode: Any
+    ) -> Optional[Dict[str, Image]]:
+        if scan is None:
+            return None
+        out: Dict[str, Image] = {}
+        for kind in IMAGE_KINDS:
+            relative = Path(scan[kind])
+            if relative.is_absolute() or ".." in relative.parts:
+                raise DatasetError(f"{self.path}: image path {scan[kind]!r} leaves the folder")
+            path = self.path / relative
+            try:
+                out[kind] = decode(path.read_bytes())
+            except OSError as e:
+                raise DatasetError(f"{path}: {e}") from e
+        return out
+
+
+class Dataset(_Folder):
     """A dataset folder opened for reading; iterate it for its pairs, in file order.
 
     Attributes
@@ -295,48 +344,6 @@ class Dataset:
         """Streams what a method may see of each pair (no ground truth), in file order."""
         for pair in self.pairs():
             yield pair.input()
-
-    def verify(self) -> None:
-        """Checks every file's size and sha256 against the manifest.
-
-        Raises
-        ------
-        DatasetError
-            Naming the first file that differs or is missing.
-        """
-        for name, entry in self.manifest["files"].items():
-            path = self.path / name
-            try:
-                size = path.stat().st_size
-                digest = hashlib.sha256()
-                with open(path, "rb") as f:
-                    for block in iter(lambda: f.read(1 << 20), b""):
-                        digest.update(block)
-            except OSError as e:
-                raise DatasetError(f"{path}: {e}") from e
-            if size != entry["bytes"] or digest.hexdigest() != entry["sha256"].lower():
-                raise DatasetError(
-                    f"{path}: size or sha256 differs from the manifest "
-                    "(the file changed after the manifest was written)"
-                )
-
-    def _read_images(
-        self, scan: Optional[Dict[str, Any]], decode: Any
-    ) -> Optional[Dict[str, Image]]:
-        if scan is None:
-            return None
-        out: Dict[str, Image] = {}
-        for kind in IMAGE_KINDS:
-            relative = Path(scan[kind])
-            if relative.is_absolute() or ".." in relative.parts:
-                raise DatasetError(f"{self.path}: image path {scan[kind]!r} leaves the folder")
-            path = self.path / relative
-            try:
-                out[kind] = decode(path.read_bytes())
-            except OSError as e:
-                raise DatasetError(f"{path}: {e}") from e
-        return out
-
 
 def open_dataset(path: PathLike, *, images: Union[bool, str] = False) -> Dataset:
     """Opens a dataset folder (``pairs.mcap``, ``manifest.json``, ...) for reading.

@@ -11,7 +11,6 @@ set's pairs unchanged.
 
 from __future__ import annotations
 
-import hashlib
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, Dict, Iterator, List, Optional, Union
@@ -20,7 +19,6 @@ import cbor2
 import numpy as np
 
 from .dataset import (
-    IMAGE_KINDS,
     DatasetError,
     Image,
     Joint,
@@ -28,6 +26,7 @@ from .dataset import (
     Pair,
     PathLike,
     _Checker,
+    _Folder,
     _image_decoder,
     _iter_topic,
     _read_manifest,
@@ -232,7 +231,7 @@ class Set:
         )
 
 
-class SetDataset:
+class SetDataset(_Folder):
     """A set dataset folder opened for reading; iterate it for its sets, in file order.
 
     Attributes
@@ -295,35 +294,6 @@ class SetDataset:
             raise DatasetError(
                 f"{path}: holds {count} sets but the manifest announces {len(self)} (truncated?)"
             )
-
-    def verify(self) -> None:
-        """Checks every file's size and sha256 against the manifest (DatasetError names the
-        first that differs)."""
-        for name, entry in self.manifest["files"].items():
-            path = self.path / name
-            try:
-                digest = hashlib.sha256(path.read_bytes()).hexdigest()
-                size = path.stat().st_size
-            except OSError as e:
-                raise DatasetError(f"{path}: {e}") from e
-            if size != entry["bytes"] or digest != entry["sha256"].lower():
-                raise DatasetError(f"{path}: size or sha256 differs from the manifest")
-
-    def _read_images(
-        self, scan: Optional[Dict[str, Any]], decode: Any
-    ) -> Optional[Dict[str, Image]]:
-        if scan is None:
-            return None
-        out: Dict[str, Image] = {}
-        for kind in IMAGE_KINDS:
-            relative = Path(scan[kind])
-            if relative.is_absolute() or ".." in relative.parts:
-                raise DatasetError(f"{self.path}: image path {scan[kind]!r} leaves the folder")
-            try:
-                out[kind] = decode((self.path / relative).read_bytes())
-            except OSError as e:
-                raise DatasetError(f"{self.path / relative}: {e}") from e
-        return out
 
 
 def open_set_dataset(path: PathLike, *, images: Union[bool, str] = False) -> SetDataset:
