@@ -5,11 +5,18 @@
 //! the record's own size: the mcap crate reserves the length a string field claims before it
 //! checks that the record holds that many bytes, so a corrupt length (found by fuzzing the
 //! readers) would allocate gigabytes.
+//!
+//! Chunks are taken whole from the mcap crate's reader and opened here: decompressed (zstd,
+//! or stored), checked against their CRC, and their records split with every length checked
+//! against what is left of the chunk. The crate's own chunk reader subtracts an inner
+//! record's length from the chunk's remaining size unchecked (a fuzzed stored chunk made it
+//! overflow).
 
 use std::io::{ErrorKind, Read};
 
 use mcap::records::{op, Record};
 use mcap::sans_io::{LinearReadEvent, LinearReader, LinearReaderOptions};
+use mcap::McapError;
 
 /// Largest record the readers buffer; a corrupt length field beyond it is an error, not an
 /// allocation.
@@ -36,6 +43,8 @@ impl StreamError {
 pub(crate) struct RecordStream<R> {
     source: R,
     reader: LinearReader,
+    /// The records of the chunk being read, and where the next one starts.
+    chunk: Option<(Vec<u8>, usize)>,
 }
 
 impl<R: Read> RecordStream<R> {
@@ -45,12 +54,50 @@ impl<R: Read> RecordStream<R> {
             .with_validate_chunk_crcs(true)
             .with_validate_summary_section_crc(true)
             .with_validate_data_section_crc(true)
-            .with_record_length_limit(RECORD_LIMIT);
-        Self { source, reader: LinearReader::new_with_options(options) }
+            .with_record_length_limit(RECORD_LIMIT)
+            .with_emit_chunks(true);
+        Self { source, reader: LinearReader::new_with_options(options), chunk: None }
     }
 
     /// The next Channel or Message record, `Ok(None)` at the stream's clean end.
     pub(crate) fn next_record(&mut self) -> Result<Option<Record<'static>>, StreamError> {
+        loop {
+            if let Some(record) = self.next_in_chunk()? {
+                return Ok(Some(record));
+            }
+            let Some((opcode, data)) = self.next_outer()? else { return Ok(None) };
+            if opcode == op::CHUNK {
+                self.chunk = Some((open_chunk(&data)?, 0));
+            } else if let Some(record) = wanted(opcode, &data)? {
+                return Ok(Some(record));
+            }
+        }
+    }
+
+    /// The next Channel or Message record of the open chunk; `None` once it is read out.
+    fn next_in_chunk(&mut self) -> Result<Option<Record<'static>>, StreamError> {
+        while let Some((records, at)) = &mut self.chunk {
+            let rest = &records[*at..];
+            if rest.is_empty() {
+                self.chunk = None;
+                break;
+            }
+            let corrupt = || StreamError::Mcap(McapError::UnexpectedEoc);
+            let header = rest.get(..9).ok_or_else(corrupt)?;
+            let len = u64::from_le_bytes(header[1..9].try_into().expect("eight bytes"));
+            let len =
+                usize::try_from(len).ok().filter(|&l| l <= rest.len() - 9).ok_or_else(corrupt)?;
+            let (opcode, data) = (header[0], &rest[9..9 + len]);
+            *at += 9 + len;
+            if let Some(record) = wanted(opcode, data)? {
+                return Ok(Some(record));
+            }
+        }
+        Ok(None)
+    }
+
+    /// The next record outside chunks (a chunk whole), `None` at the stream's clean end.
+    fn next_outer(&mut self) -> Result<Option<(u8, Vec<u8>)>, StreamError> {
         while let Some(event) = self.reader.next_event() {
             match event.map_err(StreamError::Mcap)? {
                 LinearReadEvent::ReadRequest(need) => {
@@ -64,19 +111,56 @@ impl<R: Read> RecordStream<R> {
                     self.reader.notify_read(n);
                 }
                 LinearReadEvent::Record { opcode, data } => {
-                    if opcode != op::CHANNEL && opcode != op::MESSAGE {
-                        continue;
+                    if opcode == op::CHUNK || opcode == op::CHANNEL || opcode == op::MESSAGE {
+                        return Ok(Some((opcode, data.to_vec())));
                     }
-                    if opcode == op::CHANNEL && !channel_lengths_fit(data) {
-                        return Err(StreamError::CorruptChannel);
-                    }
-                    let record = mcap::parse_record(opcode, data).map_err(StreamError::Mcap)?;
-                    return Ok(Some(record.into_owned()));
                 }
             }
         }
         Ok(None)
     }
+}
+
+/// A Channel or Message record parsed, `None` for any other record.
+fn wanted(opcode: u8, data: &[u8]) -> Result<Option<Record<'static>>, StreamError> {
+    if opcode != op::CHANNEL && opcode != op::MESSAGE {
+        return Ok(None);
+    }
+    if opcode == op::CHANNEL && !channel_lengths_fit(data) {
+        return Err(StreamError::CorruptChannel);
+    }
+    let record = mcap::parse_record(opcode, data).map_err(StreamError::Mcap)?;
+    Ok(Some(record.into_owned()))
+}
+
+/// The records of a chunk: its data decompressed (zstd) or as stored, of the size and CRC
+/// its header gives.
+fn open_chunk(body: &[u8]) -> Result<Vec<u8>, StreamError> {
+    let Record::Chunk { header, data } =
+        mcap::parse_record(op::CHUNK, body).map_err(StreamError::Mcap)?
+    else {
+        return Err(StreamError::Mcap(McapError::UnexpectedEoc));
+    };
+    let mcap = |e: McapError| StreamError::Mcap(e);
+    let size = usize::try_from(header.uncompressed_size)
+        .ok()
+        .filter(|&n| n <= RECORD_LIMIT)
+        .ok_or(mcap(McapError::ChunkTooLarge(header.uncompressed_size)))?;
+    let records = match header.compression.as_str() {
+        "" => data.into_owned(),
+        "zstd" => zstd::bulk::decompress(&data, size)
+            .map_err(|e| mcap(McapError::DecompressionError(e.to_string())))?,
+        other => return Err(mcap(McapError::UnsupportedCompression(other.into()))),
+    };
+    if records.len() != size {
+        let available = records.len() as u64;
+        return Err(mcap(McapError::BadChunkLength { header: size as u64, available }));
+    }
+    let calculated = crc32fast::hash(&records);
+    if header.uncompressed_crc != 0 && calculated != header.uncompressed_crc {
+        return Err(mcap(McapError::BadChunkCrc { saved: header.uncompressed_crc, calculated }));
+    }
+    Ok(records)
 }
 
 /// Whether every length field of a Channel record's body (`id` u16, `schema_id` u16,
