@@ -197,9 +197,6 @@ impl GeneratorConfig {
             if !(2..=MAX_VIEWS).contains(&sets.views) {
                 return invalid("sets.views", &format!("must be 2 to {MAX_VIEWS}"));
             }
-            if sets.views > self.states_per_object {
-                return invalid("sets.views", "must be at most `states_per_object`");
-            }
             if sets.per_object == 0 || sets.per_object > 64 {
                 return invalid("sets.per_object", "must be 1 to 64");
             }

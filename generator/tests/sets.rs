@@ -109,8 +109,7 @@ fn scanned_views_come_with_their_images_and_shards_merge_byte_for_byte() {
 fn bad_set_configs_name_the_field() {
     let cases = [
         (config(SetMode::Full, 1), "sets.views"),
-        (config(SetMode::Full, 11), "sets.views"),
-        (GeneratorConfig { states_per_object: 3, ..config(SetMode::Full, 4) }, "sets.views"),
+        (config(SetMode::Full, 17), "sets.views"),
         (
             GeneratorConfig {
                 sets: Some(SetsConfig { per_object: 0, ..SetsConfig::default() }),

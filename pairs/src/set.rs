@@ -25,6 +25,11 @@ use crate::transform::Similarity;
 
 /// Tolerance on view 0's own motions, which must be the identity.
 const IDENTITY_TOLERANCE: Real = 1e-5;
+/// Tolerance on a rotation matrix's deviation from orthonormality (the pair record's).
+const ROTATION_TOLERANCE: Real = 1e-3;
+/// How far the motions of set parts grouped into one part of a pair may differ between its
+/// two views (rotation and translation differences, summed; normalised units).
+const GROUP_TOLERANCE: Real = 1e-3;
 /// Tolerance on a stored flow against the motion it should equal, normalised units (the
 /// pair record's).
 const FLOW_TOLERANCE: Real = 1e-4;
@@ -465,8 +470,35 @@ fn validate(
         }
     }
     for (k, motions) in truth.motions.iter().enumerate() {
-        if let Some(s) = motions.iter().position(|m| !m.is_finite()) {
-            return Err(bad("motions", k, format!("part {s} is not finite")));
+        let scale = motions[0].scale;
+        let broken = motions.iter().position(|m| {
+            !m.is_finite() || m.rotation_defect() > ROTATION_TOLERANCE || m.scale != scale
+        });
+        if let Some(s) = broken {
+            let reason = format!("part {s}: not finite, not a rotation, or another scale");
+            return Err(bad("motions", k, reason));
+        }
+        if scale.is_nan() || scale <= 0.0 {
+            return Err(bad("motions", k, format!("scale {scale} is not positive")));
+        }
+    }
+    // Set parts grouped into one part of a pair must move alike between its two views.
+    for i in 0..views {
+        for j in (0..views).filter(|&j| j != i) {
+            let groups = &truth.pair_parts[i][j];
+            let between = |s: usize| truth.motions[j][s].compose(&truth.motions[i][s].inverse());
+            for (s, &g) in groups.iter().enumerate() {
+                let first = groups.iter().position(|&x| x == g).unwrap_or(s);
+                let (a, b) = (between(s), between(first));
+                let apart =
+                    (a.rotation - b.rotation).norm() + (a.translation - b.translation).norm();
+                if apart.is_nan() || apart > GROUP_TOLERANCE {
+                    let reason = format!(
+                        "row {j}: set parts {first} and {s} form one part but move apart by {apart}"
+                    );
+                    return Err(bad("pair_parts", i, reason));
+                }
+            }
         }
     }
     let identity = Similarity::identity();
@@ -593,6 +625,15 @@ mod tests {
         broken.pair_parts[0][1] = vec![1, 0];
         let err = Set::new(input.clone(), broken, prov.clone(), scans.clone()).unwrap_err();
         assert!(err.to_string().contains("pair_parts"), "{err}");
+        // Parts 0 and 1 turn apart between views 0 and 1: they cannot be one part there.
+        let mut broken = truth.clone();
+        broken.pair_parts[0][1] = vec![0, 0];
+        let err = Set::new(input.clone(), broken, prov.clone(), scans.clone()).unwrap_err();
+        assert!(err.to_string().contains("move apart"), "{err}");
+        let mut broken = truth.clone();
+        broken.motions[2][1].scale *= 2.0;
+        let err = Set::new(input.clone(), broken, prov.clone(), scans.clone()).unwrap_err();
+        assert!(err.to_string().contains("motions"), "{err}");
         let mut broken = truth.clone();
         broken.parts[2].pop();
         let err = Set::new(input.clone(), broken, prov.clone(), scans.clone()).unwrap_err();

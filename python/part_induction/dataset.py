@@ -786,7 +786,7 @@ def _read_manifest(folder: Path, records: str = PAIRS_FILE) -> Dict[str, Any]:
         )
     try:
         manifest["files"][records]["sha256"]
-        int(manifest["counts"]["pairs" if records == PAIRS_FILE else "sets"])
+        int(manifest["counts"]["pairs"] if records == PAIRS_FILE else manifest["counts"].get("sets", 0))
     except (KeyError, TypeError, ValueError) as e:
         raise DatasetError(f"{path}: invalid manifest: lacks {e}") from e
     return manifest

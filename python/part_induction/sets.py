@@ -251,7 +251,8 @@ class SetDataset(_Folder):
         self._images = images
 
     def __len__(self) -> int:
-        return int(self.manifest["counts"]["sets"])
+        # A set dataset with no set (every object left out) writes no `sets` count.
+        return int(self.manifest["counts"].get("sets", 0))
 
     def __iter__(self) -> Iterator[Set]:
         return self.sets(images=self._images)
@@ -329,8 +330,8 @@ def decode_set(record: Any, where: str) -> Set:
     set_id = c.get(record, "id", str)
     c.where = f"{where} (set {set_id!r})"
     parts = c.get(record, "num_parts", int)
-    if parts < 1:
-        c.fail("num_parts", f"{parts} parts (must be at least 1)")
+    if not 1 <= parts <= 256:
+        c.fail("num_parts", f"{parts} parts (must be 1 to 256)")
     raw_views = c.get(record, "views", list)
     k = len(raw_views)
     if k < 2:
@@ -348,8 +349,15 @@ def decode_set(record: Any, where: str) -> Set:
         ids = c.array(raw, "parts", np.uint8, 1, n, f"{f}.parts")
         if ids.max() >= parts:
             c.fail(f"{f}.parts", f"holds part {ids.max()}, but the set has {parts} parts")
-        motions = c.motions(raw, parts, c.number(raw, "scale", f"{f}.scale"))
+        scale_k = c.number(raw, "scale", f"{f}.scale")
+        if scale_k <= 0:
+            c.fail(f"{f}.scale", f"{scale_k} is not positive")
+        motions = c.motions(raw, parts, scale_k)
         if v == 0:
+            off = (np.abs(motions.rotations - np.eye(3)).max() + np.abs(motions.translations).max()
+                   + abs(scale_k - 1.0))
+            if off > 1e-5:
+                c.fail(f"{f}.motions", "view 0's motions must be the identity")
             if "flow" in raw:
                 c.fail(f"{f}.flow", "present on view 0")
             flow = None
@@ -358,8 +366,12 @@ def decode_set(record: Any, where: str) -> Set:
         presence = c.array(raw, "presence", np.uint8, 1, k * n, f"{f}.presence")
         if presence.max() > 1:
             c.fail(f"{f}.presence", "holds a value other than 0 or 1")
+        if not presence.reshape(k, n)[v].all():
+            c.fail(f"{f}.presence", f"row {v}, the view's own, must be all 1")
         groups = c.array(raw, "pair_parts", np.uint8, 1, k * parts, f"{f}.pair_parts")
         groups = groups.reshape(k, parts)
+        if (groups[v] != np.arange(parts)).any():
+            c.fail(f"{f}.pair_parts", f"row {v}, the view's own, must be 0 .. {parts - 1}")
         for j, row in enumerate(groups):
             seen = np.maximum.accumulate(np.concatenate([[-1], row[:-1].astype(np.int64)]))
             if (row.astype(np.int64) > seen + 1).any():
@@ -390,11 +402,13 @@ def decode_set(record: Any, where: str) -> Set:
             values = c.get(raw, key, list, f"{f}.{key}")
             try:
                 array = np.array(values, np.float32).reshape(k, width)
-            except (TypeError, ValueError):
+            except (TypeError, ValueError, OverflowError):
                 c.fail(f"{f}.{key}", f"expected {k} entries of {width}")
             if not np.isfinite(array).all():
                 c.fail(f"{f}.{key}", "non-finite value")
             arrays[key] = array
+        if (np.abs(np.linalg.norm(arrays["axis"], axis=1) - 1.0) > 1e-3).any():
+            c.fail(f"{f}.axis", "an axis is not unit length")
         part = c.get(raw, "part", int, f"{f}.part")
         parent = c.get(raw, "parent", int, f"{f}.parent")
         if not (0 <= part < parts and 0 <= parent < parts) or part == parent:
@@ -403,9 +417,22 @@ def decode_set(record: Any, where: str) -> Set:
             name=c.get(raw, "name", str, f"{f}.name"), part=part, parent=parent, kind=kind,
             axis=arrays["axis"], pivot=arrays["pivot"], value=arrays["value"][:, 0],
         ))
+    kinds = [view.kind for view in views]
+    if kinds[0] == "scan" and "full" in kinds or "full" in kinds[1:] and "scan" in kinds[1:]:
+        c.fail("views", "must be all full, all scanned, or view 0 full and the others scanned")
     provenance = c.get(record, "provenance", dict)
-    if len(c.get(provenance, "views", list, "provenance.views")) != k:
+    for key, kind in (("category", str), ("object_id", int), ("seed", int),
+                      ("generator_version", str)):
+        c.get(provenance, key, kind, f"provenance.{key}")
+    prov_views = c.get(provenance, "views", list, "provenance.views")
+    if len(prov_views) != k:
         c.fail("provenance.views", f"expected {k} entries")
+    for v, entry in enumerate(prov_views):
+        f = f"provenance.views[{v}]"
+        if not isinstance(entry, dict):
+            c.fail(f, "not a map")
+        c.get(entry, "articulation", int, f"{f}.articulation")
+        c.get(entry, "joints", dict, f"{f}.joints")
     return Set(id=set_id, num_parts=parts, views=views, joints=joints, provenance=provenance)
 
 

@@ -136,6 +136,16 @@ fn wanted(opcode: u8, data: &[u8]) -> Result<Option<Record<'static>>, StreamErro
 /// The records of a chunk: its data decompressed (zstd) or as stored, of the size and CRC
 /// its header gives.
 fn open_chunk(body: &[u8]) -> Result<Vec<u8>, StreamError> {
+    // The header's compression string (u32 length at bytes 28..32) and the records' u64
+    // length must fit the record before the mcap crate reserves what the string claims.
+    let compression = body.get(28..32).map(|b| u32::from_le_bytes(b.try_into().expect("4")));
+    let fits =
+        compression.is_some_and(|n| (n as usize).checked_add(40).is_some_and(|e| e <= body.len()));
+    if !fits {
+        let available = body.len() as u64;
+        let header = compression.map_or(0, |n| u64::from(n) + 40);
+        return Err(StreamError::Mcap(McapError::BadChunkLength { header, available }));
+    }
     let Record::Chunk { header, data } =
         mcap::parse_record(op::CHUNK, body).map_err(StreamError::Mcap)?
     else {
@@ -195,6 +205,36 @@ mod tests {
 
     fn string(s: &str) -> Vec<u8> {
         [&(s.len() as u32).to_le_bytes()[..], s.as_bytes()].concat()
+    }
+
+    #[test]
+    fn chunks_are_opened_with_every_length_checked() {
+        let records = [&[op::CHANNEL][..], &3u64.to_le_bytes(), b"abc"].concat();
+        let chunk = |compression: &[u8], claimed: u32, size: u64, data: &[u8]| {
+            [
+                &[0u8; 16][..],
+                &size.to_le_bytes(),
+                &crc32fast::hash(data).to_le_bytes(),
+                &claimed.to_le_bytes(),
+                compression,
+                &(data.len() as u64).to_le_bytes(),
+                data,
+            ]
+            .concat()
+        };
+        let stored = chunk(b"", 0, records.len() as u64, &records);
+        assert_eq!(open_chunk(&stored).expect("a stored chunk"), records);
+        // A compression string claimed longer than the record: refused before any
+        // allocation of its length.
+        let overlong = chunk(b"", u32::MAX, records.len() as u64, &records);
+        assert!(open_chunk(&overlong).is_err());
+        assert!(open_chunk(&stored[..20]).is_err(), "a truncated header");
+        let wrong_size = chunk(b"", 0, 999, &records);
+        assert!(open_chunk(&wrong_size).is_err());
+        let mut bad_crc = stored.clone();
+        bad_crc[24] ^= 1;
+        assert!(open_chunk(&bad_crc).is_err());
+        assert!(open_chunk(&chunk(b"lz4", 3, records.len() as u64, &records)).is_err());
     }
 
     #[test]

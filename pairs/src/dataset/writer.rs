@@ -138,6 +138,10 @@ impl DatasetWriter {
     /// Appends one pair with the PNG images of its scanned sides: the images go to the
     /// paths its scan records name (under `images/`) and to Foxglove image channels.
     pub fn write_scanned(&mut self, pair: &Pair, images: &PairImages) -> Result<(), DatasetError> {
+        if self.records != PAIRS_FILE {
+            let reason = "a pair goes to a pair dataset (DatasetWriter::create)".to_string();
+            return Err(DatasetError::Images { pair: pair.id().into(), reason });
+        }
         let seq = self.counts.pairs;
         let sides = [("p", &pair.scans().p, &images.p), ("q", &pair.scans().q, &images.q)];
         for (side, scan, pngs) in sides {
