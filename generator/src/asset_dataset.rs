@@ -9,7 +9,10 @@ use pairs::dataset::{AssetRecord, DatasetWriter, FileEntry, Manifest};
 use rayon::prelude::*;
 
 use crate::config::GeneratorConfig;
-use crate::generate::{dataset_origin, pairs_of_object, GenerateError, GeneratedPair, Variant};
+use crate::generate::{
+    dataset_origin, pairs_of_object, sets_of_object, GenerateError, GeneratedPair, GeneratedSet,
+    Variant,
+};
 use crate::import::{discover_assets, load_asset, ImportError, Imported};
 
 /// Assets made into pairs at once before their pairs are written: bounds memory.
@@ -70,19 +73,28 @@ pub fn generate_asset_dataset(
             ),
         }));
     }
-    let mut writer = DatasetWriter::create(dir, overwrite)?;
+    let mut writer = match config.sets {
+        Some(_) => DatasetWriter::create_sets(dir, overwrite)?,
+        None => DatasetWriter::create(dir, overwrite)?,
+    };
     let mut records = Vec::with_capacity(sources.len());
     let mut failures = Vec::new();
     let indexed: Vec<(u32, &AssetSource)> = (0u32..).zip(sources).collect();
     for batch in indexed.chunks(BATCH_ASSETS) {
-        let made: Vec<Result<Vec<GeneratedPair>, String>> =
-            batch.par_iter().map(|&(index, source)| asset_pairs(&config, index, source)).collect();
+        let made: Vec<Result<Made, String>> =
+            batch.par_iter().map(|&(index, source)| asset_items(&config, index, source)).collect();
         for (&(index, source), made) in batch.iter().zip(made) {
             let mut record = asset_record(root, index, source)?;
             match made {
-                Ok(pairs) => {
+                Ok(Made::Pairs(pairs)) => {
                     for pair in &pairs {
                         writer.write_scanned(&pair.pair, &pair.images)?;
+                        progress(writer.len());
+                    }
+                }
+                Ok(Made::Sets(sets)) => {
+                    for set in &sets {
+                        writer.write_set(&set.set, &set.images)?;
                         progress(writer.len());
                     }
                 }
@@ -99,15 +111,24 @@ pub fn generate_asset_dataset(
     Ok(AssetDataset { manifest: writer.finish(origin)?, failures })
 }
 
-/// The pairs of one asset, or its error as text.
-fn asset_pairs(
-    config: &GeneratorConfig,
-    index: u32,
-    source: &AssetSource,
-) -> Result<Vec<GeneratedPair>, String> {
+/// What one asset gave: its pairs, or its sets in a set dataset.
+enum Made {
+    Pairs(Vec<GeneratedPair>),
+    Sets(Vec<GeneratedSet>),
+}
+
+/// The pairs (or sets) of one asset, or its error as text.
+fn asset_items(config: &GeneratorConfig, index: u32, source: &AssetSource) -> Result<Made, String> {
     let imported = source.loaded.as_ref().map_err(ToString::to_string)?;
+    if config.sets.is_some() {
+        return sets_of_object(config, &imported.object, index, true)
+            .map(Made::Sets)
+            .map_err(|e| e.to_string());
+    }
     let variant = Variant { index: 0, kind: config.kind, images: true };
-    pairs_of_object(config, &imported.object, index, variant).map_err(|e| e.to_string())
+    pairs_of_object(config, &imported.object, index, variant)
+        .map(Made::Pairs)
+        .map_err(|e| e.to_string())
 }
 
 /// The manifest record of an asset: its files' sizes and checksums (error not yet set).

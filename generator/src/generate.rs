@@ -24,7 +24,7 @@ mod pair;
 mod set;
 
 use pair::{make_pair, Partner, Scene, State};
-pub use set::{object_sets, set_id, GeneratedSet, SET_ATTEMPTS};
+pub use set::{object_sets, set_id, sets_of_object, GeneratedSet, SET_ATTEMPTS};
 
 /// Version written into every pair's provenance and the manifest.
 pub const GENERATOR_VERSION: &str = env!("CARGO_PKG_VERSION");

@@ -128,3 +128,32 @@ fn bad_set_configs_name_the_field() {
     assert_eq!(parsed.sets, Some(SetsConfig { views: 6, mode: SetMode::Scan, per_object: 1 }));
     assert!(parsed.resolved().scan.is_some(), "a scanned set dataset records its scanner");
 }
+
+#[test]
+fn user_assets_give_sets_too() {
+    use generator::asset_dataset::{generate_asset_dataset, load_assets};
+    let root = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/assets");
+    let config = GeneratorConfig {
+        points: 128,
+        min_part_points: 4,
+        seed: 5,
+        sets: Some(SetsConfig { views: 3, mode: SetMode::Mixed, per_object: 2 }),
+        ..Default::default()
+    };
+    let sources = load_assets(&root, &config).expect("listed");
+    assert!(!sources.is_empty());
+    let out = tempfile::tempdir().expect("tempdir");
+    let made = generate_asset_dataset(&config, &root, &sources, out.path(), false, |_| {})
+        .expect("a set dataset of the assets");
+    assert!(made.failures.is_empty(), "{:?}", made.failures);
+    assert_eq!(made.manifest.counts.sets, 2 * sources.len() as u64);
+    let dataset = Dataset::open(out.path()).expect("opens");
+    for set in dataset.sets().expect("sets") {
+        let set = set.expect("valid");
+        assert_eq!(set.len(), 3);
+        assert_eq!(set.provenance().category, "lamp");
+        for k in 1..3 {
+            set.pair(0, k).expect("the pair of view 0 and a scan");
+        }
+    }
+}

@@ -49,10 +49,20 @@ pub fn object_sets(
     index: u32,
     with_images: bool,
 ) -> Result<Vec<GeneratedSet>, GenerateError> {
+    sets_of_object(config, &build_object(config, index)?, index, with_images)
+}
+
+/// The sets of an already built `object` as object `index` of a set dataset (user assets
+/// come here with their object built by `crate::import`).
+pub fn sets_of_object(
+    config: &GeneratorConfig,
+    object: &ArticulatedObject,
+    index: u32,
+    with_images: bool,
+) -> Result<Vec<GeneratedSet>, GenerateError> {
     let sets = config.sets.clone().unwrap_or_default();
-    let object = build_object(config, index)?;
-    let sampler = SurfaceSampler::new(&object);
-    let states = set_states(config, &object, index, sets.views as usize);
+    let sampler = SurfaceSampler::new(object);
+    let states = set_states(config, object, index, sets.views as usize);
     let k = sets.views as usize;
     let mut made = Vec::with_capacity(sets.per_object as usize);
     for s in 0..sets.per_object {
@@ -71,7 +81,7 @@ pub fn object_sets(
                 break;
             }
             chosen.truncate(k);
-            let scene = SetScene { config, sets: &sets, object: &object, sampler: &sampler, index };
+            let scene = SetScene { config, sets: &sets, object, sampler: &sampler, index };
             let candidate = s * SET_ATTEMPTS + attempt;
             if let Some(set) = make_set(&scene, (s, candidate), &chosen, &states, with_images)? {
                 found = Some(set);

@@ -381,11 +381,12 @@ fn assets(args: &Args, config: &GeneratorConfig, root: &std::path::Path) -> Resu
     if args.sampling.shard.is_some() {
         bail!("--shard does not apply to --assets");
     }
-    if config.sets.is_some() {
-        bail!("--kind sets does not take --assets yet: make sets of the built-in categories");
-    }
     let out = args.out.clone().unwrap_or_else(|| {
-        PathBuf::from("datasets").join(format!("assets-{}", config.kind.as_str().to_lowercase()))
+        let kind = match config.sets {
+            Some(_) => "sets".to_string(),
+            None => config.kind.as_str().to_lowercase(),
+        };
+        PathBuf::from("datasets").join(format!("assets-{kind}"))
     });
     if !args.force && out.join(pairs::dataset::MANIFEST_FILE).exists() {
         bail!("{} already holds a dataset; pass --force to replace it", out.display());
@@ -408,7 +409,8 @@ fn assets(args: &Args, config: &GeneratorConfig, root: &std::path::Path) -> Resu
         }
         bail!("none of the {} assets in {} could be read", sources.len(), root.display());
     }
-    let bar = progress_bar(sources.len() as u64 * u64::from(config.pairs_per_object), "pairs");
+    let unit = if config.sets.is_some() { "sets" } else { "pairs" };
+    let bar = progress_bar(sources.len() as u64 * u64::from(config.items_per_object()), unit);
     bar.set_message(format!("generating {}", out.display()));
     let made =
         generate_asset_dataset(config, root, &sources, &out, args.force, |n| bar.set_position(n))
