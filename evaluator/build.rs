@@ -6,7 +6,7 @@
 
 use std::path::{Path, PathBuf};
 
-#[path = "src/source_hash.rs"]
+#[path = "src/running/source_hash.rs"]
 #[allow(dead_code)]
 mod source_hash;
 
@@ -41,7 +41,7 @@ fn main() {
         emit(&krate.to_uppercase(), &src, paths);
     }
     let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
-    println!("cargo:rerun-if-changed={}", src.join("source_hash.rs").display());
+    println!("cargo:rerun-if-changed={}", src.join("running").join("source_hash.rs").display());
     let scoring: Vec<PathBuf> = source_hash::SCORING.iter().map(|f| src.join(f)).collect();
     for path in &scoring {
         println!("cargo:rerun-if-changed={}", path.display());

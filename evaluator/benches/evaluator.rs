@@ -8,13 +8,13 @@
 use std::sync::Arc;
 
 use criterion::{criterion_group, criterion_main, Criterion};
+use evaluator::commands::pipeline::{evaluate, NoProgress, Options};
 use evaluator::datasets::DatasetSpec;
-use evaluator::pipeline::{evaluate, NoProgress, Options};
-use evaluator::reference::OnePart;
-use evaluator::registry::{FlowSource, Registry};
-use evaluator::score::score_pair;
+use evaluator::rows::reference::OnePart;
+use evaluator::rows::registry::{FlowSource, Registry};
 use generator::config::GeneratorConfig;
 use generator::generate::object_pairs;
+use pairs::metrics::score_pair;
 use pairs::{Prediction, Segmenter};
 
 fn score_one_pair(c: &mut Criterion) {

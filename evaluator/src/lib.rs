@@ -1,22 +1,27 @@
-//! Every method on every dataset, scored into reproducible leaderboards.
+//! Every method on every dataset, scored into reproducible leaderboards. The crate is laid
+//! out by job:
 //!
-//! The [`registry`] names every leaderboard row: whole methods, segmenters combined with a
-//! flow source (`seqransac@net-flow`), and the `gt` oracle. [`run`] runs a row on a
-//! [`datasets`] dataset in parallel over pairs, scoring each prediction with [`score`]
-//! (`pairs::metrics`) and caching per-pair results ([`record`]). [`leaderboard`] aggregates
-//! them with polars into the CSV leaderboards; [`plots`], [`gallery`] and [`report`] draw the
-//! PCC curves and segmentation pictures and write `LEADERBOARD.md` beside the paper's
-//! numbers ([`paper`]). An iterative row (`net-iter`) also scores each of its passes as it
-//! runs ([`passes`], cached beside its runs file), and [`iterations`] writes the paper's
-//! Table 4 from them; [`joints`] holds the joint scores of its first and last passes.
-//! [`tuning`] cross-validates the baselines' parameters on the validation sets,
-//! [`external`] and [`commands`] score and write prediction files of methods run elsewhere,
-//! [`standard`] is the default registry and [`pipeline`] the whole evaluation.
+//! - [`rows`]: what a leaderboard row is. The [`rows::registry`] names every row: whole
+//!   methods, segmenters combined with a flow source (`seqransac@net-flow`), the `gt`
+//!   oracle, and rows read from prediction files ([`rows::external`]); [`rows::standard`]
+//!   is the default registry, [`rows::grid`] the parameters a row exposes for tuning and
+//!   [`rows::reference`] the reference rows.
+//! - [`running`]: a row run on a [`datasets`] dataset in parallel over pairs
+//!   ([`running::run`]), each prediction scored with `pairs::metrics::score_pair` and the
+//!   per-pair results cached ([`running::record`]); an iterative row (`net-iter`) also
+//!   scores each of its passes as it runs ([`running::passes`]).
+//! - [`tuning`]: the baselines' parameters cross-validated on the validation sets.
+//! - [`boards`]: the cached results aggregated with polars into the CSV leaderboards
+//!   ([`boards::leaderboard`]), the PCC curves ([`boards::plots`]), the segmentation
+//!   pictures ([`boards::gallery`]), the paper's Table 4 ([`boards::iterations`]) and
+//!   `LEADERBOARD.md` beside the paper's numbers ([`boards::report`], [`boards::paper`]).
+//! - [`commands`]: the whole evaluation ([`commands::pipeline`]) and the scoring and writing
+//!   of prediction files of methods run elsewhere ([`commands::files`]).
 //!
 //! ```
 //! use std::sync::Arc;
-//! use evaluator::reference::OnePart;
-//! use evaluator::registry::{FlowSource, Registry};
+//! use evaluator::rows::reference::OnePart;
+//! use evaluator::rows::registry::{FlowSource, Registry};
 //!
 //! let mut registry = Registry::new();
 //! registry.oracle().combine(Arc::new(OnePart), FlowSource::GroundTruth, "v1", None);
@@ -25,27 +30,12 @@
 //! ```
 #![deny(missing_docs)]
 
+pub mod boards;
 pub mod commands;
 pub mod datasets;
 pub mod error;
-pub mod external;
-pub mod gallery;
-pub mod iterations;
-pub mod joints;
-pub mod leaderboard;
-pub mod memory;
-pub mod paper;
-pub mod passes;
-pub mod pipeline;
-pub mod plots;
-pub mod record;
-pub mod reference;
-pub mod registry;
-pub mod report;
-pub mod run;
-pub mod score;
-pub mod source_hash;
-pub mod standard;
+pub mod rows;
+pub mod running;
 pub mod tuning;
 
 pub use error::EvalError;

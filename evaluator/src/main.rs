@@ -6,15 +6,15 @@ use std::time::Instant;
 
 use anyhow::{Context, Result};
 use clap::Parser;
-use evaluator::commands::{
+use evaluator::commands::files::{
     add_remembered_rows, score_predictions, write_predictions, CommandOptions, PredictRequest,
 };
+use evaluator::commands::pipeline::{evaluate, Options, Progress};
 use evaluator::datasets::{
     dataset_specs, default_datasets, parse_user_dataset, remember_datasets, validation_datasets,
     DatasetSpec,
 };
-use evaluator::pipeline::{evaluate, Options, Progress};
-use evaluator::standard::{standard_registry, DEFAULT_WEIGHTS};
+use evaluator::rows::standard::{standard_registry, DEFAULT_WEIGHTS};
 use indicatif::{ProgressBar, ProgressStyle};
 
 #[derive(Parser, Debug)]
@@ -181,7 +181,7 @@ impl Progress for Bars {
     }
 }
 
-fn registry(weights: &Path) -> Result<evaluator::registry::Registry> {
+fn registry(weights: &Path) -> Result<evaluator::rows::registry::Registry> {
     standard_registry(weights)
         .with_context(|| format!("building the method registry (weights {})", weights.display()))
 }
@@ -208,7 +208,7 @@ fn run_command(command: Command) -> Result<()> {
                 &bars,
             )
             .with_context(|| format!("scoring {} on {dataset}", predictions.display()))?;
-            for line in evaluator::leaderboard::row_lines(&summary.reports, &row) {
+            for line in evaluator::boards::leaderboard::row_lines(&summary.reports, &row) {
                 println!("{line}");
             }
             eprintln!(
@@ -310,7 +310,8 @@ fn run(args: Args) -> Result<()> {
         started.elapsed().as_secs_f64(),
         summary.reports.display()
     );
-    for line in evaluator::iterations::summary_lines(&summary.iterations, &summary.iteration_joints)
+    for line in
+        evaluator::boards::iterations::summary_lines(&summary.iterations, &summary.iteration_joints)
     {
         eprintln!("{line}");
     }

@@ -5,10 +5,10 @@
 use std::path::Path;
 use std::sync::Arc;
 
+use evaluator::commands::pipeline::{evaluate, NoProgress, Options, Summary};
 use evaluator::datasets::DatasetSpec;
-use evaluator::pipeline::{evaluate, NoProgress, Options, Summary};
-use evaluator::reference::OnePart;
-use evaluator::registry::{Board, FlowSource, Registry};
+use evaluator::rows::reference::OnePart;
+use evaluator::rows::registry::{Board, FlowSource, Registry};
 use generator::config::GeneratorConfig;
 use pairs::math::Vector3;
 use pairs::{Method, MethodError, PairInput, Prediction};
@@ -175,7 +175,7 @@ fn unknown_names_are_refused_with_the_known_ones() {
 #[derive(Default)]
 struct Notices(std::sync::Mutex<Vec<String>>);
 
-impl evaluator::pipeline::Progress for Notices {
+impl evaluator::commands::pipeline::Progress for Notices {
     fn generating(&self, _: &str, _: u64, _: u64) {}
     fn start(&self, _: &str, _: &str, _: u64) {}
     fn tick(&self) {}
@@ -295,7 +295,7 @@ struct TwoPasses {
 
 impl Method for TwoPasses {
     fn name(&self) -> &str {
-        evaluator::iterations::ITERATIVE_ROW
+        evaluator::boards::iterations::ITERATIVE_ROW
     }
 
     fn predict(&self, _: &PairInput) -> Result<Prediction, MethodError> {

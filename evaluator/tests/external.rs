@@ -9,13 +9,13 @@ use std::path::{Path, PathBuf};
 use std::sync::Arc;
 
 use baselines::SeqRansac;
-use evaluator::commands::{
+use evaluator::commands::files::{
     add_remembered_rows, score_predictions, write_predictions, CommandOptions, PredictRequest,
 };
+use evaluator::commands::pipeline::{evaluate, NoProgress, Options};
 use evaluator::datasets::DatasetSpec;
-use evaluator::external::file_sha256;
-use evaluator::pipeline::{evaluate, NoProgress, Options};
-use evaluator::registry::{FlowSource, Registry};
+use evaluator::rows::external::file_sha256;
+use evaluator::rows::registry::{FlowSource, Registry};
 use generator::config::GeneratorConfig;
 use pairs::predictions::{read_predictions, PredictionHeader, PredictionRecord, PredictionWriter};
 
@@ -47,7 +47,7 @@ fn setup(root: &Path) -> CommandOptions {
 }
 
 /// Every built-in row on the tiny dataset (made on the way).
-fn evaluate_all(root: &Path, registry: &Registry) -> evaluator::pipeline::Summary {
+fn evaluate_all(root: &Path, registry: &Registry) -> evaluator::commands::pipeline::Summary {
     let options = Options {
         datasets: Vec::new(),
         methods: Vec::new(),
@@ -75,7 +75,7 @@ fn score(
     registry: &Registry,
     file: &Path,
     name: &str,
-) -> Result<(String, evaluator::pipeline::Summary), evaluator::EvalError> {
+) -> Result<(String, evaluator::commands::pipeline::Summary), evaluator::EvalError> {
     score_predictions(registry, &[spec()], "tiny", file, Some(name), &setup(root), &NoProgress)
 }
 

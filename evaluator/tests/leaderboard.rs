@@ -5,12 +5,12 @@
 use std::collections::BTreeMap;
 use std::sync::Arc;
 
-use evaluator::leaderboard::{Leaderboards, Scored};
-use evaluator::record::RunRow;
-use evaluator::registry::{Board, Entry, Runner};
-use evaluator::run::{RunMeta, RunResult, RUNS_VERSION};
-use evaluator::score::{FlowScore, PairScore, SegmentScore};
+use evaluator::boards::leaderboard::{Leaderboards, Scored};
+use evaluator::rows::registry::{Board, Entry, Runner};
+use evaluator::running::record::RunRow;
+use evaluator::running::run::{RunMeta, RunResult, RUNS_VERSION};
 use pairs::metrics::{pcc_auc, PCC_THRESHOLDS};
+use pairs::metrics::{FlowScore, PairScore, SegmentScore};
 use pairs::{Method, MethodError, PairInput, Prediction};
 use polars::prelude::DataFrame;
 

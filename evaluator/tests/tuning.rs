@@ -6,11 +6,12 @@ use std::collections::BTreeSet;
 use std::path::Path;
 use std::sync::{Arc, Mutex};
 
+use evaluator::commands::pipeline::{evaluate, NoProgress, Options};
 use evaluator::datasets::{DatasetSpec, LoadedDataset};
-use evaluator::pipeline::{evaluate, NoProgress, Options};
-use evaluator::registry::{Board, FlowSource, Registry, Runner};
-use evaluator::run::FlowCache;
-use evaluator::tuning::{tune, Axis, Grid};
+use evaluator::rows::grid::{Axis, Grid};
+use evaluator::rows::registry::{Board, FlowSource, Registry, Runner};
+use evaluator::running::run::FlowCache;
+use evaluator::tuning::tune;
 use evaluator::EvalError;
 use generator::categories::Split;
 use generator::config::GeneratorConfig;

@@ -9,7 +9,7 @@ use generator::categories::Split;
 use generator::config::GeneratorConfig;
 use generator::generate::{object_pairs_with, GenerateError, Variant};
 use pairs::math::Vector3;
-use pairs::metrics::{epe, matched_iou, rand_index};
+use pairs::metrics::{score_pair, MetricError};
 use pairs::PairKind;
 use pairs::{Pair, PartId, Prediction};
 
@@ -91,6 +91,15 @@ pub enum ScoreError {
         /// What went wrong.
         #[source]
         source: pairs::metrics::MetricError,
+    },
+    /// The prediction could not be scored (`pairs::metrics::score_pair`).
+    #[error("pair {pair}: {source}")]
+    Score {
+        /// The pair's id.
+        pair: String,
+        /// What went wrong.
+        #[source]
+        source: pairs::metrics::ScoreError,
     },
     /// The inference procedure failed on a pair (the error names the pair).
     #[error(transparent)]
@@ -185,15 +194,18 @@ impl PairScores {
     /// The scores of `prediction` (its flow and P's labels) on `pair`, with a support IoU
     /// scored elsewhere (NaN where none is).
     pub fn of(pair: &Pair, prediction: &Prediction, support_iou: f64) -> Result<Self, ScoreError> {
-        let truth = pair.truth();
-        let metric = |source| ScoreError::Metric { pair: pair.id().to_string(), source };
-        let flow = prediction.flow.as_deref().unwrap_or_default();
-        let matching = matched_iou(&prediction.segments_p, &truth.part_p).map_err(metric)?;
+        let true_flow = true_flow(pair)?;
+        let id = || pair.id().to_string();
+        let score = score_pair(prediction, pair.input(), pair.truth())
+            .map_err(|source| ScoreError::Score { pair: id(), source })?;
+        let no_flow =
+            MetricError::LengthMismatch { what: "flow", predicted: 0, truth: true_flow.len() };
+        let flow = score.flow.ok_or(ScoreError::Metric { pair: id(), source: no_flow })?;
         Ok(Self {
-            epe: epe(flow, true_flow(pair)?).map_err(metric)?,
-            rand_index: rand_index(&prediction.segments_p, &truth.part_p).map_err(metric)?,
-            iou_sum: matching.iou.iter().sum::<f64>(),
-            parts: matching.iou.len(),
+            epe: flow.epe,
+            rand_index: score.p.rand_index,
+            iou_sum: score.p.iou_sum,
+            parts: score.p.parts as usize,
             support_iou,
         })
     }

@@ -157,6 +157,48 @@ pub fn joint_errors_of(
         .collect()
 }
 
+/// Joint scores summed over pairs (the iteration board's joint columns): how many true
+/// joints were seen, how many got the right type, and the axis errors and axis-line
+/// distances of those with an estimate.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub struct JointScores {
+    /// Ground-truth joints seen.
+    pub joints: usize,
+    /// Joints whose type was estimated correctly.
+    pub type_correct: usize,
+    /// Axis errors in degrees, one per joint with an estimate.
+    pub axis_errors: Vec<f64>,
+    /// Axis line distances, one per revolute joint estimated as revolute.
+    pub pivot_distances: Vec<f64>,
+}
+
+impl JointScores {
+    /// The summed scores of `errors` (one pair's [`JointError`]s, say).
+    pub fn of(errors: &[JointError]) -> Self {
+        let mut scores = JointScores::default();
+        for joint in errors {
+            scores.joints += 1;
+            scores.type_correct += usize::from(joint.type_correct());
+            scores.axis_errors.extend(joint.axis_deg);
+            scores.pivot_distances.extend(joint.line_distance);
+        }
+        scores
+    }
+
+    /// Adds another set of scores (e.g. one pair's) to these.
+    pub fn merge(&mut self, other: JointScores) {
+        self.joints += other.joints;
+        self.type_correct += other.type_correct;
+        self.axis_errors.extend(other.axis_errors);
+        self.pivot_distances.extend(other.pivot_distances);
+    }
+
+    /// Fraction of joints with the right type.
+    pub fn type_accuracy(&self) -> f64 {
+        self.type_correct as f64 / self.joints.max(1) as f64
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -2,16 +2,21 @@
 //! formula and convention): flow errors ([`flow`]), segmentation scores
 //! ([`segmentation`]), the errors of matched parts' motions ([`motion`]) and of the joints
 //! estimated from them ([`joints`]). Every function is pure and checks its inputs' lengths.
+//! [`pair`] puts them together into the one score of a pair ([`score_pair`]) and [`sets`]
+//! into the score of a set of K views ([`score_set`]); the evaluator's rows and iteration
+//! passes and the trainer's validation all use these two.
 
 pub mod flow;
 pub mod joints;
 pub mod motion;
+pub mod pair;
 pub mod segmentation;
 pub mod sets;
 
 pub use flow::{end_point_errors, epe, pcc, pcc_at, pcc_auc, PCC_STEP, PCC_THRESHOLDS};
-pub use joints::{joint_errors, joint_errors_of, line_to_line_distance, JointError};
+pub use joints::{joint_errors, joint_errors_of, line_to_line_distance, JointError, JointScores};
 pub use motion::{motion_errors, segment_count, MotionErrors};
+pub use pair::{check_prediction, score_pair, FlowScore, PairScore, ScoreError, SegmentScore};
 pub use segmentation::{matched_iou, max_assignment, rand_index, PartMatching};
 pub use sets::{score_set, SetScores};
 

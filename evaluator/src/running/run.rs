@@ -17,12 +17,12 @@ use serde::{Deserialize, Serialize};
 
 use crate::datasets::LoadedDataset;
 use crate::error::EvalError;
-use crate::memory;
-use crate::passes::{passes_path, read_passes, score_passes, write_passes, PairPasses};
-use crate::record::{joint_types, read_rows, write_rows, RunRow};
-use crate::registry::{method_flow_name, Entry, FlowSource, Runner};
-use crate::score::score_pair;
+use crate::rows::registry::{method_flow_name, Entry, FlowSource, Runner};
+use crate::running::memory;
+use crate::running::passes::{passes_path, read_passes, score_passes, write_passes, PairPasses};
+use crate::running::record::{joint_types, read_rows, write_rows, RunRow};
 use pairs::atomic::replace_bytes;
+use pairs::metrics::score_pair;
 
 /// Version of the runs files; bump it when scoring changes so cached runs are recomputed.
 pub const RUNS_VERSION: u32 = 3;
@@ -160,7 +160,7 @@ fn iterative(runner: &Runner) -> Option<&Arc<dyn Method>> {
 fn predict_passes(
     method: &dyn Method,
     pair: &Pair,
-) -> (Result<Prediction, String>, Option<Vec<crate::passes::PassScore>>) {
+) -> (Result<Prediction, String>, Option<Vec<crate::running::passes::PassScore>>) {
     match guarded(|| method.predict_passes(pair.input()).map_err(|e| e.to_string())) {
         Ok(mut passes) => {
             let scores = guarded(|| score_passes(pair, &passes));
@@ -266,7 +266,7 @@ pub fn run_entry(
         RunRow,
         Option<Vec<u32>>,
         Result<Vec<Vector3>, String>,
-        Option<Vec<crate::passes::PassScore>>,
+        Option<Vec<crate::running::passes::PassScore>>,
     );
     let outcomes: Vec<Outcome> = dataset
         .pairs

@@ -9,13 +9,13 @@
 
 use std::path::Path;
 
-use pairs::metrics::{PCC_STEP, PCC_THRESHOLDS};
+use pairs::metrics::{pcc_auc, PCC_STEP, PCC_THRESHOLDS};
 use polars::prelude::*;
 
 use crate::error::EvalError;
-use crate::record::{pcc_column, RunRow};
-use crate::registry::{Board, Entry};
-use crate::run::RunResult;
+use crate::rows::registry::{Board, Entry};
+use crate::running::record::{pcc_column, RunRow};
+use crate::running::run::RunResult;
 use pairs::atomic::replace_file;
 
 /// One row's run on one dataset, as the leaderboards read it.
@@ -186,10 +186,11 @@ fn flow_board(sums: &DataFrame) -> Result<(DataFrame, Vec<PccCurve>), EvalError>
     let at = |t: f64| curve[(t / PCC_STEP).round() as usize].clone();
     let auc: Vec<Option<f64>> = (0..pairs.len())
         .map(|row| {
-            let values: Option<Vec<f64>> = curve.iter().map(|c| c[row]).collect();
-            values.map(|v| {
-                v.windows(2).map(|w| 0.5 * (w[0] + w[1])).sum::<f64>() / (PCC_THRESHOLDS - 1) as f64
-            })
+            let mut values = [0.0; PCC_THRESHOLDS];
+            for (value, c) in values.iter_mut().zip(&curve) {
+                *value = c[row]?;
+            }
+            Some(pcc_auc(&values))
         })
         .collect();
     let (datasets, methods) = (strings(sums, "dataset")?, strings(sums, "method")?);

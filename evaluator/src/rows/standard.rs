@@ -25,10 +25,13 @@ use pairs::{Method, Segmenter};
 use sha2::{Digest, Sha256};
 
 use crate::error::EvalError;
-use crate::iterations::ITERATIVE_ROW;
-use crate::reference::OnePart;
-use crate::registry::{Board, FlowSource, Registry, Runner};
-use crate::tuning::{Axis, Grid};
+use crate::rows::grid::{Axis, Grid};
+use crate::rows::reference::OnePart;
+use crate::rows::registry::{Board, FlowSource, Registry, Runner};
+
+/// The row whose passes make the iteration board (`crate::boards::iterations`): the
+/// network's iterative procedure.
+pub const ITERATIVE_ROW: &str = "net-iter";
 
 /// The shipped weights the default rows use (a folder with `config.toml` and `model.bpk`).
 pub const DEFAULT_WEIGHTS: &str = "model/weights/cpu";

@@ -1,16 +1,20 @@
-//! One pair's scores: a prediction checked for shape and finiteness, then scored against the
-//! ground truth with `pairs::metrics` (flow, segmentation of P and Q, matched motions).
+//! The score of one pair, the one every consumer uses: the evaluator's rows and the passes
+//! of its iterative rows, and the trainer's validation. A prediction is checked for shape
+//! and finiteness ([`check_prediction`]), then scored against the ground truth
+//! ([`score_pair`]): flow (EPE and the PCC curve), segmentation of P and Q (Rand index and
+//! matched IoU), the matched parts' motions and the joints (docs/METRICS.md).
 
-use pairs::metrics::{
+use super::{
     end_point_errors, joint_errors, joint_errors_of, matched_iou, motion_errors, pcc, pcc_at,
     pcc_auc, rand_index, segment_count, JointError, MetricError, PCC_THRESHOLDS,
 };
-use pairs::{GroundTruth, PairInput, Prediction};
+use crate::joint_estimate::JointEstimate;
+use crate::{GroundTruth, PairInput, Prediction};
 
 /// Why a prediction cannot be scored (the pair counts as failed for its method).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[non_exhaustive]
-pub enum Malformed {
+pub enum ScoreError {
     /// A per-point array has the wrong length.
     #[error("{what} has {got} entries, expected {expected}")]
     Length {
@@ -35,13 +39,13 @@ pub enum Malformed {
 }
 
 /// Checks every per-point field of `prediction` against the pair's sizes and finiteness.
-pub fn check_prediction(prediction: &Prediction, input: &PairInput) -> Result<(), Malformed> {
+pub fn check_prediction(prediction: &Prediction, input: &PairInput) -> Result<(), ScoreError> {
     let (n_p, n_q) = (input.p.len(), input.q.len());
     let length = |what, got, expected| {
         if got == expected {
             Ok(())
         } else {
-            Err(Malformed::Length { what, got, expected })
+            Err(ScoreError::Length { what, got, expected })
         }
     };
     length("segments_p", prediction.segments_p.len(), n_p)?;
@@ -51,25 +55,25 @@ pub fn check_prediction(prediction: &Prediction, input: &PairInput) -> Result<()
     if let Some(flow) = &prediction.flow {
         length("flow", flow.len(), n_p)?;
         if let Some(index) = flow.iter().position(|v| !v.iter().all(|c| c.is_finite())) {
-            return Err(Malformed::NotFinite { what: "flow", index });
+            return Err(ScoreError::NotFinite { what: "flow", index });
         }
     }
     if let Some(mask) = &prediction.corr_mask {
         length("corr_mask", mask.len(), n_p)?;
         if let Some(index) = mask.iter().position(|v| !v.is_finite()) {
-            return Err(Malformed::NotFinite { what: "corr_mask", index });
+            return Err(ScoreError::NotFinite { what: "corr_mask", index });
         }
     }
     if let Some(index) = prediction.motions.iter().position(|m| !m.is_finite()) {
-        return Err(Malformed::NotFinite { what: "motions", index });
+        return Err(ScoreError::NotFinite { what: "motions", index });
     }
-    let joint_finite = |j: &Option<pairs::joint_estimate::JointEstimate>| {
+    let joint_finite = |j: &Option<JointEstimate>| {
         j.as_ref().is_none_or(|j| {
             j.axis.iter().chain(j.pivot.iter()).chain([&j.value]).all(|v| v.is_finite())
         })
     };
     if let Some(index) = prediction.joints.iter().flatten().position(|j| !joint_finite(j)) {
-        return Err(Malformed::NotFinite { what: "joints", index });
+        return Err(ScoreError::NotFinite { what: "joints", index });
     }
     Ok(())
 }
@@ -140,7 +144,7 @@ pub fn score_pair(
     prediction: &Prediction,
     input: &PairInput,
     truth: &GroundTruth,
-) -> Result<PairScore, Malformed> {
+) -> Result<PairScore, ScoreError> {
     check_prediction(prediction, input)?;
     // A cross-instance pair has no true flow: its flow is not scored (never against zero).
     let flow = match (&prediction.flow, &truth.flow) {
@@ -197,15 +201,15 @@ pub fn score_pair(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use pairs::math::Vector3;
-    use pairs::synthetic::hinge_pair;
+    use crate::math::Vector3;
+    use crate::synthetic::hinge_pair;
 
-    fn truth_prediction(pair: &pairs::Pair) -> Prediction {
+    fn truth_prediction(pair: &crate::Pair) -> Prediction {
         let t = pair.truth();
         Prediction {
             flow: t.flow.clone(),
-            segments_p: pairs::parts::part_segments(&t.part_p),
-            segments_q: pairs::parts::part_segments(&t.part_q),
+            segments_p: crate::parts::part_segments(&t.part_p),
+            segments_q: crate::parts::part_segments(&t.part_q),
             motions: t.motions.clone(),
             ..Prediction::default()
         }
@@ -219,7 +223,7 @@ mod tests {
             *s = 7 - *s;
         }
         let truth_motions = std::mem::take(&mut prediction.motions);
-        prediction.motions = vec![pairs::Similarity::identity(); 8];
+        prediction.motions = vec![crate::Similarity::identity(); 8];
         prediction.motions[7] = truth_motions[0];
         prediction.motions[6] = truth_motions[1];
         let score = score_pair(&prediction, pair.input(), pair.truth()).expect("scores");
@@ -265,5 +269,23 @@ mod tests {
             let err = score_pair(&prediction, pair.input(), pair.truth()).expect_err(message);
             assert_eq!(err.to_string(), message);
         }
+    }
+
+    #[test]
+    fn the_true_segments_give_every_joint_and_one_segment_none() {
+        use crate::metrics::JointScores;
+        use crate::segments::complete_prediction;
+        let pair = hinge_pair("t", 6, 0.8);
+        let (input, truth) = (pair.input(), pair.truth());
+        let flow = truth.flow.as_deref().expect("a flow");
+        let right = complete_prediction(input, flow, &truth.part_p, true);
+        let scores = JointScores::of(&score_pair(&right, input, truth).expect("scores").joints);
+        assert_eq!(scores.joints, 1);
+        assert_eq!(scores.type_accuracy(), 1.0);
+        assert!(scores.axis_errors[0] < 0.1, "{:?}", scores.axis_errors);
+        assert!(scores.pivot_distances[0] < 1e-3, "{:?}", scores.pivot_distances);
+        let one = complete_prediction(input, flow, &vec![0u8; truth.part_p.len()], true);
+        let none = JointScores::of(&score_pair(&one, input, truth).expect("scores").joints);
+        assert_eq!((none.joints, none.type_correct), (1, 0));
     }
 }

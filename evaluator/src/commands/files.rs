@@ -1,15 +1,19 @@
 //! `evaluator score` and `evaluator predict` as library calls: a prediction file scored onto
 //! the boards as an external row, and any row's predictions written as such a file.
 
+use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use pairs::predictions::{PredictionHeader, PredictionReader, PredictionRecord, PredictionWriter};
+use pairs::predictions::{PredictionHeader, PredictionRecord, PredictionWriter};
 
+use crate::commands::pipeline::{evaluate, predict_row, Options, Progress, Summary};
 use crate::datasets::{remember_datasets, validation_datasets, DatasetSpec};
 use crate::error::EvalError;
-use crate::external::{dataset_hash, file_sha256, remember_rows, remembered_rows, ExternalFile};
-use crate::pipeline::{evaluate, predict_row, Options, Progress, Summary};
-use crate::registry::{Registry, Runner};
+use crate::rows::external::{
+    dataset_hash, file_sha256, remember_rows, remembered_rows, ExternalFile, ExternalFiles,
+    PredictionFile,
+};
+use crate::rows::registry::{Registry, Runner};
 
 /// Where `score` and `predict` read and write.
 #[derive(Debug, Clone)]
@@ -68,12 +72,23 @@ pub fn resolve_dataset(
 /// scored no longer matches its cached run, and its row leaves the boards until it is scored
 /// again (`evaluator --all` runs an external row only when `--methods` names it).
 pub fn add_remembered_rows(registry: &mut Registry, reports: &Path) -> Result<(), EvalError> {
-    for (name, mut files) in remembered_rows(reports)? {
+    add_rows(registry, remembered_rows(reports)?)
+}
+
+/// [`add_remembered_rows`] for the rows `rows`.
+fn add_rows(
+    registry: &mut Registry,
+    rows: BTreeMap<String, ExternalFiles>,
+) -> Result<(), EvalError> {
+    for (name, mut files) in rows {
+        if registry.entries().iter().any(|e| e.name == name) {
+            continue;
+        }
         files.files.retain(|_, f| f.path.exists());
         for file in files.files.values_mut() {
             file.sha256 = file_sha256(&file.path)?;
         }
-        if !files.files.is_empty() && !registry.entries().iter().any(|e| e.name == name) {
+        if !files.files.is_empty() {
             registry.external(&name, files);
         }
     }
@@ -117,18 +132,18 @@ pub fn score_predictions(
     progress: &dyn Progress,
 ) -> Result<(String, Summary), EvalError> {
     let spec = resolve_dataset(dataset, specs, &setup.datasets_root)?;
-    let header = PredictionReader::open(predictions)?.header()?.clone();
-    let name = name.unwrap_or(&header.method).to_owned();
+    let path = std::fs::canonicalize(predictions)
+        .map_err(|source| EvalError::Io { path: predictions.into(), source })?;
+    // The file is read once: its header, records and hash.
+    let file = PredictionFile::read(&path)?;
+    let name = name.unwrap_or(&file.header.method).to_owned();
     check_row_name(&name, registry)
         .map_err(|message| EvalError::PredictionsMismatch { path: predictions.into(), message })?;
     let mut rows = remembered_rows(&setup.reports)?;
     let mut files = rows.remove(&name).unwrap_or_default();
-    let path = std::fs::canonicalize(predictions)
-        .map_err(|source| EvalError::Io { path: predictions.into(), source })?;
-    let sha256 = file_sha256(&path)?;
-    files.files.insert(spec.name.clone(), ExternalFile { path, sha256 });
+    files.files.insert(spec.name.clone(), ExternalFile::read(file));
     let mut registry = registry.clone();
-    add_remembered_rows(&mut registry, &setup.reports)?;
+    add_rows(&mut registry, rows.clone())?;
     registry.external(&name, files.clone());
     let mut all_specs = specs.to_vec();
     if !all_specs.iter().any(|s| s.name == spec.name) {

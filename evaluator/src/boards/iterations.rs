@@ -1,9 +1,9 @@
 //! The paper's Table 4, a board written from the per-pass scores that the iterative row's
-//! run keeps in the runs cache ([`crate::passes`]): the iterative network (`net-iter`)
+//! run keeps in the runs cache ([`crate::running::passes`]): the iterative network (`net-iter`)
 //! scored after every pass, as
 //! `iterations.csv` (one row per dataset and iteration: EPE, RI, IoU, and how many pairs
 //! were still changing) and `iterations.svg`/`.png` (the three curves); and `iterations_joints.csv`,
-//! the joints estimated from its first and last passes ([`crate::joints`]). A pair that
+//! the joints estimated from its first and last passes (`pairs::metrics::JointScores`). A pair that
 //! converged before iteration t keeps its last pass's prediction at t, as the procedure
 //! stops there. Averages follow the leaderboards: EPE and RI over pairs, IoU over all
 //! ground-truth parts of all pairs.
@@ -13,14 +13,13 @@ use std::path::{Path, PathBuf};
 
 use plotters::prelude::*;
 
+use crate::boards::plots::PALETTE;
 use crate::error::EvalError;
-use crate::joints::{median, JointScores};
-use crate::passes::{PairPasses, PassScore};
-use crate::plots::PALETTE;
+use crate::running::passes::{PairPasses, PassScore};
 use pairs::atomic::replace_file;
+use pairs::metrics::JointScores;
 
-/// The row whose passes make the iteration board: the network's iterative procedure.
-pub const ITERATIVE_ROW: &str = "net-iter";
+pub use crate::rows::standard::ITERATIVE_ROW;
 
 /// The scores of one iteration on one dataset.
 #[derive(Debug, Clone, PartialEq)]
@@ -53,7 +52,7 @@ pub struct JointRow {
 }
 
 /// The iteration table of one dataset and the joint scores of the first and last passes,
-/// from the per-pass scores of the iterative row's run ([`crate::passes`], in pair order;
+/// from the per-pass scores of the iterative row's run ([`crate::running::passes`], in pair order;
 /// pairs that failed have none).
 pub fn iteration_table(dataset: &str, scored: &[PairPasses]) -> (Vec<IterationRow>, Vec<JointRow>) {
     let scored: Vec<&[PassScore]> =
@@ -233,6 +232,17 @@ fn draw<DB: DrawingBackend>(
     root.present().map_err(fail)
 }
 
+/// The median of `values` (NaN when empty).
+fn median(values: &[f64]) -> f64 {
+    let mut v = values.to_vec();
+    v.sort_by(f64::total_cmp);
+    match v.len() {
+        0 => f64::NAN,
+        n if n % 2 == 1 => v[n / 2],
+        n => (v[n / 2 - 1] + v[n / 2]) / 2.0,
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -268,6 +278,13 @@ mod tests {
         assert_eq!((joints[0].scores.joints, joints[0].scores.type_correct), (2, 1));
         assert_eq!((joints[1].scores.joints, joints[1].scores.type_correct), (2, 2));
         assert_eq!(joints[1].scores.axis_errors, vec![0.05, 0.3]);
+    }
+
+    #[test]
+    fn median_of_odd_even_and_empty_lists() {
+        assert_eq!(median(&[3.0, 1.0, 2.0]), 2.0);
+        assert_eq!(median(&[4.0, 1.0, 2.0, 3.0]), 2.5);
+        assert!(median(&[]).is_nan());
     }
 
     #[test]

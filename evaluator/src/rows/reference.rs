@@ -1,6 +1,6 @@
 //! Reference rows that need no learning: `one-part` (the whole of P is one rigid part, fitted
 //! to whatever flow it is given) and the `gt` oracle, which the runner answers from the
-//! ground truth itself (see [`crate::registry::Runner::Oracle`]).
+//! ground truth itself (see [`crate::rows::registry::Runner::Oracle`]).
 
 use pairs::math::Vector3;
 use pairs::segments::complete_prediction;
@@ -32,7 +32,7 @@ impl Segmenter for OnePart {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::score::score_pair;
+    use pairs::metrics::score_pair;
     use pairs::synthetic::hinge_pair;
 
     #[test]

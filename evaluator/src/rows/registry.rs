@@ -8,8 +8,8 @@ use std::sync::Arc;
 use pairs::{Method, Segmenter};
 
 use crate::error::EvalError;
-use crate::external::{ExternalFiles, EXTERNAL};
-use crate::tuning::Grid;
+use crate::rows::external::{ExternalFiles, EXTERNAL};
+use crate::rows::grid::Grid;
 
 /// Where a segmenter's input flow comes from.
 #[derive(Clone)]
@@ -43,7 +43,7 @@ pub enum Runner {
     Oracle,
     /// A whole method on the pair.
     Method(Arc<dyn Method>),
-    /// Predictions read from a prediction file per dataset ([`crate::external`]): a method
+    /// Predictions read from a prediction file per dataset ([`crate::rows::external`]): a method
     /// that ran outside the evaluator.
     External(Arc<ExternalFiles>),
     /// A segmenter on a flow source's flow.

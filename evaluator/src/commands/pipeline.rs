@@ -12,15 +12,17 @@ use std::sync::Arc;
 use pairs::Prediction;
 use rayon::prelude::*;
 
+use crate::boards::gallery::{write_picture, GalleryPicture};
+use crate::boards::iterations::{
+    iteration_table, write_iterations, IterationRow, JointRow, ITERATIVE_ROW,
+};
+use crate::boards::leaderboard::{Leaderboards, Scored};
+use crate::boards::plots::write_pcc_plots;
+use crate::boards::report::write_report;
 use crate::datasets::{ensure_dataset, load_dataset, DatasetSpec, LoadedDataset};
 use crate::error::EvalError;
-use crate::gallery::{write_picture, GalleryPicture};
-use crate::iterations::{iteration_table, write_iterations, IterationRow, JointRow, ITERATIVE_ROW};
-use crate::leaderboard::{Leaderboards, Scored};
-use crate::plots::write_pcc_plots;
-use crate::registry::{Board, Entry, Registry, Runner};
-use crate::report::write_report;
-use crate::run::{cached_run, predict_pair, run_entry, FlowCache, RunOptions, RunResult};
+use crate::rows::registry::{Board, Entry, Registry, Runner};
+use crate::running::run::{cached_run, predict_pair, run_entry, FlowCache, RunOptions, RunResult};
 use crate::tuning::{cached_sweep, sweep_key, tune, Sweep};
 
 /// What to evaluate and where.
@@ -347,7 +349,7 @@ fn resolve_tuning(
 }
 
 /// Candidates of a grid before widening.
-fn grid_size(grid: &crate::tuning::Grid) -> u64 {
+fn grid_size(grid: &crate::rows::grid::Grid) -> u64 {
     grid.axes.iter().map(|a| a.values.len() as u64).product()
 }
 

@@ -1,19 +1,18 @@
 //! Per-pass scores of an iterative row (`net-iter`: every pass of the network's procedure),
 //! made while the row runs and cached beside its runs file as `<row>.passes.csv`: one line
 //! per pair and pass with the pass's EPE, Rand index, summed IoU and part count, and its
-//! joint scores. The iteration board ([`crate::iterations`], the paper's Table 4) is written
+//! joint scores. The iteration board ([`crate::boards::iterations`], the paper's Table 4) is written
 //! from them, so no pass is ever run twice. A pair whose prediction or any pass's scoring
 //! failed has no lines (its failure is in the runs file).
 
 use std::path::{Path, PathBuf};
 
-use pairs::metrics::{epe, matched_iou, rand_index};
+use pairs::metrics::{score_pair, JointScores};
 use pairs::{Pair, Prediction};
 use serde::{Deserialize, Serialize};
 
 use crate::error::EvalError;
-use crate::joints::JointScores;
-use crate::record::read_csv;
+use crate::running::record::read_csv;
 use pairs::atomic::replace_file;
 
 /// The scores of one pass on one pair.
@@ -41,29 +40,20 @@ pub struct PairPasses {
 }
 
 /// Scores each of `passes` (predictions of one pair, the first pass first) against the
-/// pair's ground truth.
+/// pair's ground truth with [`score_pair`], the score of every row.
 pub fn score_passes(pair: &Pair, passes: &[Prediction]) -> Result<Vec<PassScore>, String> {
-    let truth = pair.truth();
     passes
         .iter()
         .map(|p| {
-            let flow = p.flow.as_deref().unwrap_or_default();
-            // A cross-instance pair has no true flow: its EPE is not a number, and its
-            // dataset gets no iteration table.
-            let e = match &truth.flow {
-                Some(true_flow) => epe(flow, true_flow).map_err(|e| e.to_string())?,
-                None => f64::NAN,
-            };
-            let ri = rand_index(&p.segments_p, &truth.part_p).map_err(|e| e.to_string())?;
-            let m = matched_iou(&p.segments_p, &truth.part_p).map_err(|e| e.to_string())?;
-            let mut joints = JointScores::default();
-            joints.add(pair, p);
+            let score = score_pair(p, pair.input(), pair.truth()).map_err(|e| e.to_string())?;
             Ok(PassScore {
-                epe: e,
-                rand_index: ri,
-                iou_sum: m.iou.iter().sum(),
-                parts: m.iou.len(),
-                joints,
+                // A cross-instance pair has no true flow: its EPE is not a number, and its
+                // dataset gets no iteration table.
+                epe: score.flow.as_ref().map_or(f64::NAN, |f| f.epe),
+                rand_index: score.p.rand_index,
+                iou_sum: score.p.iou_sum,
+                parts: score.p.parts as usize,
+                joints: JointScores::of(&score.joints),
             })
         })
         .collect()
@@ -111,7 +101,7 @@ mod semicolons {
     use serde::{de::Error, Deserialize, Deserializer, Serializer};
 
     pub fn serialize<S: Serializer>(values: &[f64], s: S) -> Result<S::Ok, S::Error> {
-        let cells: Vec<String> = values.iter().map(|&v| crate::record::num(v)).collect();
+        let cells: Vec<String> = values.iter().map(|&v| crate::running::record::num(v)).collect();
         s.serialize_str(&cells.join(";"))
     }
 

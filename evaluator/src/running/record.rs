@@ -8,8 +8,8 @@ use pairs::metrics::{JointError, PCC_STEP, PCC_THRESHOLDS};
 use serde::{Deserialize, Serialize};
 
 use crate::error::EvalError;
-use crate::score::PairScore;
 use pairs::atomic::replace_file;
+use pairs::metrics::PairScore;
 
 /// One pair's row of a runs file: what the leaderboards sum. Every score is `None` on a
 /// failed pair (whose `failed` holds the reason); `epe` and `pcc` are `None` for a method
@@ -286,7 +286,7 @@ pub fn read_rows(path: &Path) -> Result<Vec<RunRow>, EvalError> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::score::{FlowScore, SegmentScore};
+    use pairs::metrics::{FlowScore, SegmentScore};
 
     fn score(flow: bool) -> PairScore {
         let pcc = std::array::from_fn(|k| (k as f64 / 60.0).min(1.0));

@@ -8,12 +8,12 @@ use std::path::Path;
 
 use polars::prelude::{AnyValue, DataFrame};
 
+use crate::boards::gallery::GalleryPicture;
+use crate::boards::leaderboard::Leaderboards;
+use crate::boards::paper::{figures_for, Metric, PaperFigure, FIGURES};
+use crate::boards::plots::colour_hex;
 use crate::error::EvalError;
-use crate::external::EXTERNAL;
-use crate::gallery::GalleryPicture;
-use crate::leaderboard::Leaderboards;
-use crate::paper::{figures_for, Metric, PaperFigure, FIGURES};
-use crate::plots::colour_hex;
+use crate::rows::external::EXTERNAL;
 use crate::tuning::Sweep;
 use pairs::atomic::replace_bytes;
 

@@ -9,8 +9,8 @@ use pairs::metrics::PCC_STEP;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
+use crate::boards::leaderboard::PccCurve;
 use crate::error::EvalError;
-use crate::leaderboard::PccCurve;
 
 /// Line colours in row order (the tab10 palette), repeated past ten rows.
 pub const PALETTE: [RGBColor; 10] = [
