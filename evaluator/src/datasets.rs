@@ -7,8 +7,8 @@ use std::path::{Path, PathBuf};
 use generator::categories::Split;
 use generator::config::GeneratorConfig;
 use generator::generate::{dataset_origin, generate_dataset};
-use pairs::dataset::{Dataset, Manifest, PAIRS_FILE};
-use pairs::{Pair, PairKind};
+use pairs::dataset::{Dataset, Manifest, PAIRS_FILE, SETS_FILE};
+use pairs::{Pair, PairKind, Set, SetMode};
 
 use crate::error::EvalError;
 
@@ -86,8 +86,16 @@ pub const CROSS_INSTANCE_OBJECTS: u32 = 52;
 
 /// The default datasets: the paper's three synthetic test sets (SF2F, SF2P, SP2P) on the
 /// generator's defaults, then the cross-instance sets (XF2F, XF2P: two objects of one
-/// category) of [`CROSS_INSTANCE_OBJECTS`] objects, named by their kind.
+/// category) of [`CROSS_INSTANCE_OBJECTS`] objects, named by their kind, then the set
+/// dataset of [`default_set_datasets`].
 pub fn default_datasets() -> Vec<DatasetSpec> {
+    let mut specs = pair_datasets();
+    specs.extend(default_set_datasets());
+    specs
+}
+
+/// The default pair datasets ([`default_datasets`] without the sets).
+fn pair_datasets() -> Vec<DatasetSpec> {
     PairKind::ALL
         .into_iter()
         .map(|kind| {
@@ -99,6 +107,88 @@ pub fn default_datasets() -> Vec<DatasetSpec> {
             DatasetSpec::generated(&kind.as_str().to_lowercase(), config)
         })
         .collect()
+}
+
+/// Objects of the default set dataset: four per held-out test category (104 sets of 4
+/// views, so 312 pairs (0, k) per row), within `--all`'s time budget on 2 cores.
+pub const SET_OBJECTS: u32 = 104;
+
+/// The default set dataset (`sets-scan`, `datasets/sets-scan.toml`): K = 4 virtual scans
+/// of each of [`SET_OBJECTS`] test objects in four articulation states, the setting of
+/// MultiBodySync's SAPIEN test data (K depth scans of one object).
+pub fn default_set_datasets() -> Vec<DatasetSpec> {
+    let config = GeneratorConfig {
+        objects: SET_OBJECTS,
+        sets: Some(generator::config::SetsConfig { views: 4, mode: SetMode::Scan, per_object: 1 }),
+        ..GeneratorConfig::default()
+    };
+    vec![DatasetSpec::generated("sets-scan", config)]
+}
+
+/// Whether the dataset folder `dir` holds sets (its manifest counts sets).
+pub fn holds_sets(dir: &Path) -> bool {
+    Dataset::open(dir).is_ok_and(|d| d.holds_sets())
+}
+
+/// A loaded set dataset: its sets in file order, and the pairs (view 0, view k) of every
+/// set, k = 1 .. K-1, set by set, which the pair rows run on before their predictions are
+/// lifted to the set (`pairs::set_method::lift_pairs`).
+#[derive(Debug)]
+pub struct LoadedSets {
+    /// The sets.
+    pub sets: Vec<Set>,
+    /// The pairs (0, k) of every set, as a dataset named like the set dataset whose content
+    /// hash is the sets file's.
+    pub pairs: LoadedDataset,
+}
+
+/// Loads the set dataset `name` from `dir` (verifying its checksums), keeping the first
+/// `limit` sets when a limit is given.
+pub fn load_set_dataset(
+    name: &str,
+    dir: &Path,
+    limit: Option<usize>,
+) -> Result<LoadedSets, EvalError> {
+    let err = |source| EvalError::Dataset { name: name.to_owned(), source };
+    let dataset = Dataset::open(dir).map_err(err)?;
+    dataset.verify().map_err(err)?;
+    let hash =
+        dataset.manifest().files.get(SETS_FILE).map(|f| f.sha256.clone()).unwrap_or_default();
+    let sets: Vec<Set> = dataset
+        .sets()
+        .map_err(err)?
+        .take(limit.unwrap_or(usize::MAX))
+        .collect::<Result<_, _>>()
+        .map_err(err)?;
+    if sets.is_empty() {
+        return Err(EvalError::EmptyDataset { name: name.to_owned(), dir: dir.to_path_buf() });
+    }
+    let mut pairs = Vec::new();
+    for set in &sets {
+        for k in 1..set.len() {
+            let pair = set.pair(0, k).map_err(|e| {
+                err(pairs::DatasetError::InvalidSet {
+                    path: dir.join(SETS_FILE),
+                    source: Box::new(e),
+                })
+            })?;
+            pairs.push(pair);
+        }
+    }
+    let content_hash = match limit {
+        Some(l) => format!("{hash}:first{l}"),
+        None => hash,
+    };
+    let split = dataset
+        .manifest()
+        .origin
+        .config
+        .get("split")
+        .and_then(|s| s.as_str())
+        .and_then(|s| s.parse().ok());
+    let pairs =
+        LoadedDataset { name: name.to_owned(), pairs, content_hash, split, cross_instance: false };
+    Ok(LoadedSets { sets, pairs })
 }
 
 /// A loaded dataset: its pairs in file order and the hash of its pair file.
@@ -278,6 +368,11 @@ mod tests {
             );
             assert_eq!(parsed.total_pairs(), 260);
         }
+        let parsed: GeneratorConfig =
+            toml::from_str(include_str!("../../datasets/sets-scan.toml")).expect("parses");
+        let spec = specs.iter().find(|s| s.name == "sets-scan").expect("the set dataset");
+        assert_eq!(spec.config.as_ref().map(GeneratorConfig::resolved), Some(parsed.resolved()));
+        assert_eq!(parsed.total_pairs(), 104, "sets");
     }
 
     #[test]

@@ -416,3 +416,63 @@ fn a_cross_instance_set_is_on_the_segmentation_board_only_and_skips_true_flow_ro
     let runs = rows(&reports.join("runs/cross/gt.csv"));
     assert!(!runs.is_empty() && runs.iter().all(|r| r["epe"].is_empty()), "{runs:?}");
 }
+
+#[test]
+fn a_set_dataset_gets_a_set_board_of_the_segmentation_rows_and_leaves_the_pair_boards() {
+    let dir = tempfile::tempdir().expect("a temporary folder");
+    let sets = GeneratorConfig {
+        objects: 2,
+        points: 96,
+        min_part_points: 4,
+        sets: Some(generator::config::SetsConfig { views: 3, ..Default::default() }),
+        ..GeneratorConfig::default()
+    };
+    let specs = [spec(), DatasetSpec::generated("tiny-sets", sets)];
+    let options = Options {
+        datasets: Vec::new(),
+        methods: Vec::new(),
+        limit: None,
+        datasets_root: dir.path().join("datasets"),
+        reports: dir.path().join("reports"),
+        force: false,
+        gallery_pairs: 1,
+        validation: Vec::new(),
+    };
+    let registry = registry("one-part v1");
+    let first = evaluate(&registry, &specs, &options, &NoProgress).expect("runs");
+    // Three rows on the pairs, three on the sets.
+    assert_eq!(first.fresh, 6);
+    let reports = dir.path().join("reports");
+    let board = rows(&reports.join("leaderboard_sets.csv"));
+    let row = |name: &str| board.iter().find(|r| r["method"] == name).cloned().expect("listed");
+    for name in ["gt", "one-part", "broken"] {
+        let r = row(name);
+        assert_eq!(
+            (r["dataset"].as_str(), r["views"].as_str(), r["sets"].as_str()),
+            ("tiny-sets", "3", "2")
+        );
+    }
+    // Broken's pair (0, 1) has a NaN flow and its pair (0, 2) panics: both sets fail, and
+    // nothing is averaged.
+    let broken = row("broken");
+    assert_eq!((broken["failed"].as_str(), broken["multi_scan_miou"].as_str()), ("2", ""));
+    let (gt, one) = (row("gt"), row("one-part"));
+    let number = |r: &std::collections::HashMap<String, String>, c: &str| -> f64 {
+        r[c].parse().expect("a number")
+    };
+    for c in ["multi_scan_miou", "per_scan_miou", "multi_scan_ri", "per_scan_ri"] {
+        let (g, o) = (number(&gt, c), number(&one, c));
+        assert!((0.0..=1.0).contains(&g) && (0.0..=1.0).contains(&o), "{c}: {g} {o}");
+        assert!(g > o, "{c}: the truth of each pair ({g}) beats one part ({o})");
+    }
+    // One part per view: the per-scan RI of a single segment is the chance that two points
+    // share a part, below 1; the pair boards do not list the set dataset.
+    assert!(number(&one, "per_scan_ri") < 1.0);
+    assert!(!read(&reports.join("leaderboard_seg.csv")).contains("tiny-sets"));
+    assert!(read(&reports.join("LEADERBOARD.md")).contains("## Sets"));
+    // A rerun reuses every run and writes the same board.
+    let before = read(&reports.join("leaderboard_sets.csv"));
+    let second = evaluate(&registry, &specs, &options, &NoProgress).expect("runs");
+    assert_eq!((second.fresh, second.cached), (0, 6));
+    assert_eq!(read(&reports.join("leaderboard_sets.csv")), before);
+}

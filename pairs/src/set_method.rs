@@ -1,7 +1,7 @@
 //! Methods on sets of K views: the [`SetMethod`] trait, and [`PairsToSet`], which lifts
 //! any pair [`Method`] to sets by a fixed rule (docs/METRICS.md, "Sets").
 
-use crate::method::{Method, MethodError};
+use crate::method::{Method, MethodError, Prediction};
 use crate::pair::PairInput;
 use crate::parts::SegmentId;
 use crate::set::SetInput;
@@ -52,51 +52,62 @@ impl<M: Method> SetMethod for PairsToSet<M> {
 
     fn predict_set(&self, input: &SetInput) -> Result<SetPrediction, MethodError> {
         let fail = |reason: String| MethodError::new(&self.name, &input.id, reason);
-        let k = input.views.len();
-        let mut segments: Vec<Vec<SegmentId>> = Vec::with_capacity(k);
-        for view in 1..k {
+        let mut predictions = Vec::with_capacity(input.views.len().saturating_sub(1));
+        for view in 1..input.views.len() {
             let pair = pair_input(input, 0, view)
                 .ok_or_else(|| fail(format!("views 0 and {view} make no pair")))?;
-            let prediction = self.method.predict(&pair)?;
-            let (p, q) = (&input.views[0].cloud.points, &input.views[view].cloud.points);
-            if prediction.segments_p.len() != p.len() {
-                return Err(fail(format!(
-                    "pair {}: {} segments for P's {} points",
-                    pair.id,
-                    prediction.segments_p.len(),
-                    p.len()
-                )));
-            }
-            if view == 1 {
-                segments.push(prediction.segments_p.clone());
-            }
-            let base = &segments[0];
-            let carried = if prediction.segments_q.len() == q.len() {
-                rename(&prediction.segments_p, &prediction.segments_q, base)
-            } else if let Some(flow) = prediction.flow.as_ref().filter(|f| f.len() == p.len()) {
-                let moved: Vec<_> = p.iter().zip(flow).map(|(x, f)| x + f).collect();
-                q.iter()
-                    .map(|y| {
-                        let nearest = moved
-                            .iter()
-                            .enumerate()
-                            .min_by(|a, b| {
-                                (a.1 - y).norm_squared().total_cmp(&(b.1 - y).norm_squared())
-                            })
-                            .map_or(0, |(i, _)| i);
-                        base[nearest]
-                    })
-                    .collect()
-            } else {
-                return Err(fail(format!(
-                    "pair {}: the method neither segments Q nor gives a flow on P",
-                    pair.id
-                )));
-            };
-            segments.push(carried);
+            predictions.push(self.method.predict(&pair)?);
         }
-        Ok(SetPrediction { segments })
+        lift_pairs(input, &predictions).map_err(fail)
     }
+}
+
+/// The [`PairsToSet`] rule on predictions already made: `predictions[k - 1]` is the
+/// prediction for the pair (view 0, view k) ([`pair_input`]), k = 1 .. K-1. An error says
+/// which pair's prediction cannot be lifted (a length that is not its views', or neither
+/// Q's segments nor a flow).
+pub fn lift_pairs(input: &SetInput, predictions: &[Prediction]) -> Result<SetPrediction, String> {
+    let k = input.views.len();
+    if predictions.len() + 1 != k || k < 2 {
+        return Err(format!("{} pair predictions for a set of {k} views", predictions.len()));
+    }
+    let mut segments: Vec<Vec<SegmentId>> = Vec::with_capacity(k);
+    for (view, prediction) in (1..k).zip(predictions) {
+        let id = format!("{}-0-{view}", input.id);
+        let (p, q) = (&input.views[0].cloud.points, &input.views[view].cloud.points);
+        if prediction.segments_p.len() != p.len() {
+            return Err(format!(
+                "pair {id}: {} segments for P's {} points",
+                prediction.segments_p.len(),
+                p.len()
+            ));
+        }
+        if view == 1 {
+            segments.push(prediction.segments_p.clone());
+        }
+        let base = &segments[0];
+        let carried = if prediction.segments_q.len() == q.len() {
+            rename(&prediction.segments_p, &prediction.segments_q, base)
+        } else if let Some(flow) = prediction.flow.as_ref().filter(|f| f.len() == p.len()) {
+            let moved: Vec<_> = p.iter().zip(flow).map(|(x, f)| x + f).collect();
+            q.iter()
+                .map(|y| {
+                    let nearest = moved
+                        .iter()
+                        .enumerate()
+                        .min_by(|a, b| {
+                            (a.1 - y).norm_squared().total_cmp(&(b.1 - y).norm_squared())
+                        })
+                        .map_or(0, |(i, _)| i);
+                    base[nearest]
+                })
+                .collect()
+        } else {
+            return Err(format!("pair {id}: the method neither segments Q nor gives a flow on P"));
+        };
+        segments.push(carried);
+    }
+    Ok(SetPrediction { segments })
 }
 
 /// Q's segments renamed to the view-0 labels their P-side counterparts overlap most.

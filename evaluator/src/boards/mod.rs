@@ -7,3 +7,4 @@ pub mod leaderboard;
 pub mod paper;
 pub mod plots;
 pub mod report;
+pub mod sets;

@@ -12,6 +12,7 @@ use crate::boards::gallery::GalleryPicture;
 use crate::boards::leaderboard::Leaderboards;
 use crate::boards::paper::{figures_for, Metric, PaperFigure, FIGURES};
 use crate::boards::plots::colour_hex;
+use crate::boards::sets::SetBoardRow;
 use crate::error::EvalError;
 use crate::rows::external::EXTERNAL;
 use crate::tuning::Sweep;
@@ -113,6 +114,7 @@ pub fn write_report(
     boards: &Leaderboards,
     gallery: &[GalleryPicture],
     sweeps: &[Sweep],
+    sets: &[SetBoardRow],
 ) -> Result<(), EvalError> {
     let mut out = String::from(
         "# Leaderboard\n\nMade by `cargo run --release -p evaluator -- --all`; the same tables \
@@ -157,6 +159,51 @@ pub fn write_report(
     out.push_str("## Segmentation\n\n");
     let (head, rows) = with_paper(&boards.seg, &[Metric::Ri, Metric::Iou]);
     table(&mut out, &head, &rows);
+    if !sets.is_empty() {
+        out.push_str(
+            "## Sets\n\nK observations of one object (the MultiBodySync setting; \
+             `leaderboard_sets.csv`). Every segmentation row runs on the pairs (view 0, view k) \
+             of each set and its labels are carried to the set by one rule (docs/METRICS.md, \
+             \"Sets\"): view 0 keeps the segments of the pair (0, 1), view k takes the view-0 \
+             label its segment overlaps most. Multi-scan mIoU matches parts to segments once for \
+             all K views, so a label must name the same part in every view; per-scan mIoU \
+             matches each view on its own. Means over sets; failed sets are left out and \
+             counted.\n\n",
+        );
+        let head: Vec<String> = [
+            "dataset",
+            "row",
+            "oracle",
+            "K",
+            "multi-scan mIoU",
+            "per-scan mIoU",
+            "multi-scan RI",
+            "per-scan RI",
+            "sets",
+            "failed",
+        ]
+        .map(String::from)
+        .into();
+        let cell = |v: f64| if v.is_finite() { format!("{v:.4}") } else { "–".into() };
+        let rows: Vec<Vec<String>> = sets
+            .iter()
+            .map(|r| {
+                vec![
+                    r.dataset.clone(),
+                    format!("`{}`", r.row),
+                    r.oracle.to_string(),
+                    r.views.to_string(),
+                    cell(r.multi_scan_miou),
+                    cell(r.per_scan_miou),
+                    cell(r.multi_scan_ri),
+                    cell(r.per_scan_ri),
+                    r.sets.to_string(),
+                    r.failed.to_string(),
+                ]
+            })
+            .collect();
+        table(&mut out, &head, &rows);
+    }
     if !sweeps.is_empty() {
         out.push_str(
             "## Tuned parameters\n\nEach baseline's parameters were chosen for each flow source \

@@ -19,10 +19,15 @@ use crate::boards::iterations::{
 use crate::boards::leaderboard::{Leaderboards, Scored};
 use crate::boards::plots::write_pcc_plots;
 use crate::boards::report::write_report;
-use crate::datasets::{ensure_dataset, load_dataset, DatasetSpec, LoadedDataset};
+use crate::boards::sets::{set_board, write_set_board, ScoredSets, SetBoardRow};
+use crate::datasets::{
+    ensure_dataset, holds_sets, load_dataset, load_set_dataset, DatasetSpec, LoadedDataset,
+    LoadedSets,
+};
 use crate::error::EvalError;
 use crate::rows::registry::{Board, Entry, Registry, Runner};
 use crate::running::run::{cached_run, predict_pair, run_entry, FlowCache, RunOptions, RunResult};
+use crate::running::sets::{cached_set_run, run_set_entry, runs_on_sets, SetRunResult};
 use crate::tuning::{cached_sweep, sweep_key, tune, Sweep};
 
 /// What to evaluate and where.
@@ -78,6 +83,8 @@ impl Progress for NoProgress {
 pub struct Summary {
     /// The leaderboards as written.
     pub boards: Leaderboards,
+    /// The set board as written (`leaderboard_sets.csv`), empty without a set dataset.
+    pub set_board: Vec<SetBoardRow>,
     /// Rows run afresh.
     pub fresh: usize,
     /// Rows reused from the cache.
@@ -126,6 +133,7 @@ pub fn evaluate(
     // Selected datasets are made when missing; the others join the tables from the cache
     // when they exist on disk.
     let mut loaded: Vec<(LoadedDataset, bool)> = Vec::new();
+    let mut loaded_sets: Vec<(LoadedSets, bool)> = Vec::new();
     for spec in specs {
         let chosen = selected_specs.iter().any(|s| s.name == spec.name);
         let dir = spec.dir(&options.datasets_root);
@@ -139,10 +147,15 @@ pub fn evaluate(
         } else if !dir.join(pairs::dataset::MANIFEST_FILE).exists() {
             continue;
         }
+        if spec.config.as_ref().map_or_else(|| holds_sets(&dir), |c| c.sets.is_some()) {
+            loaded_sets.push((load_set_dataset(&spec.name, &dir, options.limit)?, chosen));
+            continue;
+        }
         loaded.push((load_dataset(&spec.name, &dir, options.limit)?, chosen));
     }
     let flows = FlowCache::default();
-    let any_chosen = loaded.iter().any(|(_, chosen)| *chosen);
+    let any_chosen =
+        loaded.iter().any(|(_, chosen)| *chosen) || loaded_sets.iter().any(|(_, chosen)| *chosen);
     let (entries, sweeps) =
         resolve_tuning(entries, &selected, any_chosen, options, &flows, progress)?;
     let entries = entries.as_slice();
@@ -184,6 +197,43 @@ pub fn evaluate(
             results.push((d, e, result));
         }
     }
+    // Every segmentation row on every set dataset: its pairs (0, k) predicted, lifted to the
+    // set and scored per set (`running::sets`).
+    let mut set_results: Vec<(usize, usize, SetRunResult)> = Vec::new();
+    for (d, (sets, chosen)) in loaded_sets.iter().enumerate() {
+        let run_options =
+            RunOptions { runs: reports.join("runs"), force: options.force, gallery: Vec::new() };
+        let name = &sets.pairs.name;
+        for (e, entry) in entries.iter().enumerate() {
+            if !runs_on_sets(entry) {
+                continue;
+            }
+            if !chosen || !selected.iter().any(|s| s.name == entry.name) {
+                if let Some(result) = cached_set_run(entry, sets, &run_options) {
+                    set_results.push((d, e, result));
+                }
+                continue;
+            }
+            progress.start(&entry.name, name, sets.pairs.pairs.len() as u64);
+            let result = run_set_entry(entry, sets, &flows, &run_options, &|| progress.tick())?;
+            progress.finish(&entry.name, name, result.cached);
+            if result.cached {
+                cached += 1;
+            } else {
+                fresh += 1;
+            }
+            set_results.push((d, e, result));
+        }
+    }
+    let scored_sets: Vec<ScoredSets> = set_results
+        .iter()
+        .map(|(d, e, result)| ScoredSets {
+            dataset: &loaded_sets[*d].0.pairs.name,
+            entry: &entries[*e],
+            rows: &result.rows,
+        })
+        .collect();
+    let set_board = set_board(&scored_sets);
     let scored: Vec<Scored> = results
         .iter()
         .map(|(d, e, result)| Scored {
@@ -193,17 +243,20 @@ pub fn evaluate(
             result,
         })
         .collect();
-    let failed = scored.iter().map(|s| s.result.rows.iter().filter(|r| !r.scored()).count()).sum();
+    let failed =
+        scored.iter().map(|s| s.result.rows.iter().filter(|r| !r.scored()).count()).sum::<usize>()
+            + set_board.iter().map(|r| r.failed).sum::<usize>();
     std::fs::create_dir_all(&reports)
         .map_err(|source| EvalError::Io { path: reports.clone(), source })?;
     let mut boards = Leaderboards::build(&scored)?;
     boards.write(&reports)?;
+    write_set_board(&reports, &set_board)?;
     write_pcc_plots(&reports, &boards.curves)?;
     let datasets: Vec<&LoadedDataset> = loaded.iter().map(|(d, _)| d).collect();
     let gallery = write_gallery(&reports, options.gallery_pairs, &datasets, &scored)?;
     let sweeps: Vec<Sweep> =
         sweeps.into_iter().filter(|s| scored.iter().any(|r| r.entry.name == s.row)).collect();
-    write_report(&reports, &boards, &gallery, &sweeps)?;
+    write_report(&reports, &boards, &gallery, &sweeps, &set_board)?;
     let (mut iterations, mut iteration_joints) = (Vec::new(), Vec::new());
     for s in scored.iter().filter(|s| s.entry.name == ITERATIVE_ROW && !s.cross_instance) {
         if let Some(passes) = &s.result.passes {
@@ -215,7 +268,17 @@ pub fn evaluate(
     if !iterations.is_empty() {
         write_iterations(&reports, &iterations, &iteration_joints)?;
     }
-    Ok(Summary { boards, fresh, cached, failed, reports, sweeps, iterations, iteration_joints })
+    Ok(Summary {
+        boards,
+        set_board,
+        fresh,
+        cached,
+        failed,
+        reports,
+        sweeps,
+        iterations,
+        iteration_joints,
+    })
 }
 
 /// Every prediction of row `row` on the dataset `options.datasets[0]` (made when missing),

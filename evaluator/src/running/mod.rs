@@ -6,4 +6,5 @@ pub mod memory;
 pub mod passes;
 pub mod record;
 pub mod run;
+pub mod sets;
 pub mod source_hash;

@@ -94,7 +94,12 @@ impl FlowCache {
 impl FlowCache {
     /// Keeps the flows a whole method's row just predicted, so segmenters on that method's
     /// flow do not predict it again.
-    fn offer(&self, method: &str, dataset: &str, flows: Vec<Result<Vec<Vector3>, String>>) {
+    pub(crate) fn offer(
+        &self,
+        method: &str,
+        dataset: &str,
+        flows: Vec<Result<Vec<Vector3>, String>>,
+    ) {
         let key = (method_flow_name(method), dataset.to_owned());
         self.flows.lock().unwrap_or_else(|e| e.into_inner()).entry(key).or_insert(Arc::new(flows));
     }
