@@ -5,12 +5,14 @@
 use std::path::Path;
 use std::sync::Arc;
 
+use evaluator::commands::files::{score_predictions, CommandOptions};
 use evaluator::commands::pipeline::{evaluate, NoProgress, Options, Summary};
 use evaluator::datasets::DatasetSpec;
 use evaluator::rows::reference::OnePart;
 use evaluator::rows::registry::{Board, FlowSource, Registry};
 use generator::config::GeneratorConfig;
 use pairs::math::Vector3;
+use pairs::predictions::{PredictionHeader, PredictionRecord, PredictionWriter};
 use pairs::{Method, MethodError, PairInput, Prediction};
 
 /// Fails in three ways, by pair: a short segmentation, a NaN flow, a panic; else one part.
@@ -475,4 +477,51 @@ fn a_set_dataset_gets_a_set_board_of_the_segmentation_rows_and_leaves_the_pair_b
     let second = evaluate(&registry, &specs, &options, &NoProgress).expect("runs");
     assert_eq!((second.fresh, second.cached), (0, 6));
     assert_eq!(read(&reports.join("leaderboard_sets.csv")), before);
+
+    // A set method run elsewhere: its labels (the set parts, one id per part in every view,
+    // renamed) written as the records of the pairs (0, k), scored onto the set board. The
+    // lifting keeps consistent labels as they are, so it scores 1 everywhere.
+    let set_dir = dir.path().join("datasets/tiny-sets");
+    let manifest = pairs::dataset::Manifest::read(&set_dir).expect("a manifest");
+    let hash = &manifest.files[pairs::dataset::SETS_FILE].sha256;
+    let file = dir.path().join("perfect.mcap");
+    let header = PredictionHeader::new("perfect-sets", "", hash);
+    let mut writer = PredictionWriter::create(&file, &header).expect("created");
+    let dataset = pairs::dataset::Dataset::open(&set_dir).expect("opens");
+    for set in dataset.sets().expect("sets") {
+        let set = set.expect("a set");
+        let labels: Vec<Vec<u32>> = set
+            .truth()
+            .parts
+            .iter()
+            .map(|v| v.iter().map(|&p| 7 - u32::from(p)).collect())
+            .collect();
+        for k in 1..set.len() {
+            let prediction = Prediction {
+                segments_p: labels[0].clone(),
+                segments_q: labels[k].clone(),
+                ..Prediction::default()
+            };
+            let id = set.pair_id(0, k);
+            writer.write(&PredictionRecord::from_prediction(&id, &prediction)).expect("written");
+        }
+    }
+    writer.finish().expect("finished");
+    let setup = CommandOptions {
+        datasets_root: dir.path().join("datasets"),
+        reports: reports.clone(),
+        gallery_pairs: 1,
+    };
+    let (name, _) =
+        score_predictions(&registry, &specs, "tiny-sets", &file, None, &setup, &NoProgress)
+            .expect("scored");
+    assert_eq!(name, "perfect-sets");
+    let board = rows(&reports.join("leaderboard_sets.csv"));
+    let perfect = board.iter().find(|r| r["method"] == "perfect-sets").expect("on the board");
+    assert_eq!(perfect["flow_source"], "external");
+    for c in ["multi_scan_miou", "per_scan_miou", "multi_scan_ri", "per_scan_ri"] {
+        assert_eq!(perfect[c], "1.0000", "{c}");
+    }
+    // The other rows stay, from the cache.
+    assert!(board.iter().any(|r| r["method"] == "one-part"));
 }

@@ -25,6 +25,7 @@ from mcap.stream_reader import StreamReader
 from mcap.writer import CompressionType, Writer
 
 from .dataset import Dataset, PathLike
+from .sets import SetDataset
 
 FORMAT = "part-induction-predictions"
 FORMAT_VERSION = 1
@@ -88,11 +89,13 @@ class PredictionWriter:
         The prediction file to write, e.g. ``predictions.mcap``.
     method : str
         The method's name (the default row name in ``evaluator score``).
-    dataset : Dataset or str
+    dataset : Dataset, SetDataset or str
         The dataset the predictions are for, or its content hash (the sha256 of its
-        ``pairs.mcap`` as listed in its manifest). With a :class:`Dataset`, each ``write``
-        also checks that the pair is one of the dataset's and that its arrays have the
-        pair's numbers of points (from ``index.csv``).
+        ``pairs.mcap``, or of a set dataset's ``sets.mcap``, as listed in its manifest).
+        With a :class:`Dataset` or :class:`SetDataset`, each ``write`` also checks that the
+        pair is one of the dataset's and that its arrays have the pair's numbers of points
+        (from ``index.csv``). A set dataset's pairs are the pairs (view 0, view k) of every
+        set, ids ``<set>-0-<k>``; :meth:`write_set` writes a set's labels as those records.
     method_version : str
         Free text (a git hash, ``1.2.0``); may be empty.
 
@@ -110,9 +113,18 @@ class PredictionWriter:
         dataset: Union[Dataset, str],
         method_version: str = "",
     ) -> None:
+        self._views: Optional[Dict[str, List[int]]] = None
         if isinstance(dataset, Dataset):
             content_hash = dataset.content_hash
             self._sizes: Optional[Dict[str, Tuple[int, int]]] = _index_sizes(dataset)
+        elif isinstance(dataset, SetDataset):
+            content_hash = dataset.content_hash
+            self._views = _set_sizes(dataset)
+            self._sizes = {
+                f"{set_id}-0-{k}": (points[0], points[k])
+                for set_id, points in self._views.items()
+                for k in range(1, len(points))
+            }
         elif isinstance(dataset, str):
             content_hash = dataset.lower()
             self._sizes = None
@@ -251,6 +263,32 @@ class PredictionWriter:
         if joints is not None:
             record["joints"] = _joints(where, joints, num_segments)
         self._add(record)
+
+    def write_set(self, set_id: str, segments: Sequence[Any]) -> None:
+        """Writes a set method's labels for one set of K views: ``segments[k]`` (integer,
+        shape [N_k]) labels the points of view k, one id naming the same part in every view.
+        They are written as the records of the pairs (view 0, view k), k = 1 .. K-1, each
+        with view 0's labels as ``segments_p`` and view k's as ``segments_q``; the evaluator
+        lifts such records to the set unchanged (docs/METRICS.md, "Sets").
+
+        Raises
+        ------
+        PredictionError
+            When the writer was not opened on a :class:`SetDataset`, the set is not one of
+            it, or ``segments`` does not hold one label per point of each view.
+        """
+        if self._views is None:
+            raise PredictionError(
+                f"set {set_id!r}: write_set needs a writer opened on a SetDataset"
+            )
+        where = f"set {set_id!r}"
+        points = self._views.get(set_id)
+        if points is None:
+            raise PredictionError(f"{where}: not a set of the dataset")
+        if len(segments) != len(points):
+            raise PredictionError(f"{where}: {len(segments)} label arrays for {len(points)} views")
+        for k in range(1, len(points)):
+            self.write(f"{set_id}-0-{k}", segments[0], segments_q=segments[k])
 
     def write_error(self, pair_id: str, reason: str) -> None:
         """Records that the method failed on a pair; the pair counts as failed with
@@ -483,6 +521,20 @@ def _check_header(path: Path, header: Dict[str, Any]) -> None:
             f"{path}: header names format {found[0]!r} version {found[1]!r} (expected "
             f"{FORMAT!r} version {FORMAT_VERSION})"
         )
+
+
+def _set_sizes(dataset: SetDataset) -> Dict[str, List[int]]:
+    """Set id -> points of each view, from the set dataset's ``index.csv``."""
+    import csv
+
+    path = dataset.path / "index.csv"
+    try:
+        with open(path, newline="", encoding="utf-8") as f:
+            return {
+                row["id"]: [int(n) for n in row["points"].split(";")] for row in csv.DictReader(f)
+            }
+    except (OSError, KeyError, ValueError) as e:
+        raise PredictionError(f"{path}: cannot read the sets' sizes: {e}") from e
 
 
 def _index_sizes(dataset: Dataset) -> Dict[str, Tuple[int, int]]:

@@ -12,7 +12,7 @@ from typing import Callable, Dict, List
 import numpy as np
 import pytest
 
-from part_induction import PredictionWriter, open_dataset, read_predictions
+from part_induction import PredictionError, PredictionWriter, open_dataset, read_predictions
 
 
 def rows(path: Path, method: str) -> List[Dict[str, str]]:
@@ -122,3 +122,67 @@ def test_the_example_method_writes_one_prediction_per_pair(
         # Every moved point is a point of Q, and the nearest one.
         distances = ((pair.p[:, None] - pair.q[None]) ** 2).sum(-1)
         np.testing.assert_allclose(moved, pair.q[distances.argmin(1)], atol=1e-6)
+
+
+def _miou(predicted: np.ndarray, truth: np.ndarray) -> float:
+    """Mean IoU over true parts under the Hungarian matching of parts to segments
+    (MultiBodySync's and docs/METRICS.md's convention), computed here with scipy."""
+    from scipy.optimize import linear_sum_assignment
+
+    parts, segments = np.unique(truth), np.unique(predicted)
+    iou = np.zeros((len(parts), len(segments)))
+    for i, p in enumerate(parts):
+        for j, s in enumerate(segments):
+            a, b = truth == p, predicted == s
+            iou[i, j] = (a & b).sum() / (a | b).sum()
+    rows_, cols = linear_sum_assignment(-iou)
+    return float(iou[rows_, cols].sum() / len(parts))
+
+
+@pytest.mark.evaluator
+def test_a_set_method_from_python_is_scored_onto_the_set_board(
+    sets_dir: Path, tmp_path: Path, cargo: Callable[..., str], python_env: Dict[str, str]
+) -> None:
+    from part_induction import open_set_dataset
+
+    dataset = open_set_dataset(sets_dir)
+    sets = list(dataset)
+    # The set parts, one id per part in every view (renamed): perfect by every score.
+    truth = tmp_path / "truth.mcap"
+    with PredictionWriter(truth, "set-truth-py", dataset) as writer:
+        for s in sets:
+            writer.write_set(s.id, [5 - v.parts.astype(np.int64) for v in s.views])
+        with pytest.raises(PredictionError, match="2 label arrays for 4 views"):
+            writer.write_set(sets[0].id, [np.zeros(1)] * 2)
+    # The example set method, run as a user runs it.
+    example = Path(__file__).resolve().parents[1] / "examples" / "lower_upper_sets.py"
+    out = tmp_path / "lower-upper.mcap"
+    command = [sys.executable, str(example), str(sets_dir), str(out)]
+    result = subprocess.run(command, env=python_env, stdout=subprocess.PIPE, text=True)
+    assert result.returncode == 0
+    wrote = f"wrote {3 * len(sets)} pair records ({len(sets)} sets) to {out}"
+    assert result.stdout.strip() == wrote
+    reports = tmp_path / "reports"
+    for path, name in ((truth, "set-truth-py"), (out, "lower-upper")):
+        score = ["score", "--dataset", str(sets_dir), "--predictions", str(path)]
+        score += ["--name", name, "--reports", str(reports)]
+        cargo("run", "-q", "-p", "evaluator", "--", *score)
+    (perfect,) = rows(reports / "leaderboard_sets.csv", "set-truth-py")
+    assert perfect["flow_source"] == "external" and perfect["failed"] == "0"
+    for column in ("multi_scan_miou", "per_scan_miou", "multi_scan_ri", "per_scan_ri"):
+        assert perfect[column] == "1.0000", column
+    # The example's scores, recomputed here from its labels with scipy's Hungarian matching.
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("lower_upper_sets", example)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    multi, per = [], []
+    for s in sets:
+        labels = [module.lower_upper(v.points) for v in s.views]
+        multi.append(_miou(np.concatenate(labels), np.concatenate([v.parts for v in s.views])))
+        per.append(np.mean([_miou(l, v.parts) for l, v in zip(labels, s.views)]))
+    (row,) = rows(reports / "leaderboard_sets.csv", "lower-upper")
+    assert int(row["sets"]) == len(sets) and row["failed"] == "0"
+    assert float(row["multi_scan_miou"]) == pytest.approx(np.mean(multi), abs=5e-5)
+    assert float(row["per_scan_miou"]) == pytest.approx(np.mean(per), abs=5e-5)

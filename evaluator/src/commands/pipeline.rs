@@ -205,10 +205,12 @@ pub fn evaluate(
             RunOptions { runs: reports.join("runs"), force: options.force, gallery: Vec::new() };
         let name = &sets.pairs.name;
         for (e, entry) in entries.iter().enumerate() {
-            if !runs_on_sets(entry) {
+            if !runs_on_sets(entry, name) {
                 continue;
             }
-            if !chosen || !selected.iter().any(|s| s.name == entry.name) {
+            let external = matches!(entry.runner, Runner::External(_));
+            let named = options.methods.contains(&entry.name);
+            if !chosen || !selected.iter().any(|s| s.name == entry.name) || (external && !named) {
                 if let Some(result) = cached_set_run(entry, sets, &run_options) {
                     set_results.push((d, e, result));
                 }
@@ -301,7 +303,14 @@ pub fn predict_row(
     ensure_dataset(spec, &options.datasets_root, &|m| progress.notice(m), |done, total| {
         progress.generating(&spec.name, done, total)
     })?;
-    let dataset = load_dataset(&spec.name, &spec.dir(&options.datasets_root), options.limit)?;
+    let dir = spec.dir(&options.datasets_root);
+    // On a set dataset the row predicts the pairs (view 0, view k) of every set, the records
+    // a set prediction file holds (docs/FORMAT.md).
+    let dataset = if holds_sets(&dir) {
+        load_set_dataset(&spec.name, &dir, options.limit)?.pairs
+    } else {
+        load_dataset(&spec.name, &dir, options.limit)?
+    };
     let selected = registry.select(&[row.to_owned()])?;
     let flows = FlowCache::default();
     let (entries, _) =

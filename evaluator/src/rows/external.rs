@@ -214,7 +214,7 @@ pub fn file_sha256(path: &Path) -> Result<String, EvalError> {
 }
 
 /// The dataset's content hash as a prediction file names it: the sha256 of its `pairs.mcap`
-/// (without the `:first<N>` of a limited load).
+/// (`sets.mcap` for a set dataset), without the `:first<N>` of a limited load.
 pub fn dataset_hash(dataset: &LoadedDataset) -> &str {
     dataset.content_hash.split(':').next().unwrap_or_default()
 }

@@ -6,6 +6,7 @@
 //! sets file's content hash, reused only while both match.
 
 use std::path::Path;
+use std::sync::Arc;
 use std::time::Instant;
 
 use pairs::atomic::replace_bytes;
@@ -95,12 +96,14 @@ pub struct SetRunResult {
     pub cached: bool,
 }
 
-/// Whether `entry` has a set row: every row on the segmentation board (a flow-only row
-/// gives no segments to carry), except rows read from prediction files, which name their
-/// datasets.
-pub fn runs_on_sets(entry: &Entry) -> bool {
-    entry.board != crate::rows::registry::Board::Flow
-        && !matches!(entry.runner, Runner::External(_))
+/// Whether `entry` has a row on the set dataset `dataset`: every row on the segmentation
+/// board (a flow-only row gives no segments to carry); a row read from prediction files
+/// only where it has a file for that dataset (`evaluator score`).
+pub fn runs_on_sets(entry: &Entry, dataset: &str) -> bool {
+    match &entry.runner {
+        Runner::External(files) => files.files.contains_key(dataset),
+        _ => entry.board != crate::rows::registry::Board::Flow,
+    }
 }
 
 fn read_meta(path: &Path) -> Option<RunMeta> {
@@ -167,6 +170,15 @@ pub fn run_set_entry(
         Runner::Segmenter { flow, .. } => Some(flows.get(flow, dataset)),
         _ => None,
     };
+    // A prediction file for a set dataset holds the pairs (0, k) (docs/FORMAT.md), read and
+    // checked against them before anything runs.
+    let external = match &entry.runner {
+        Runner::External(files) => {
+            Some(Runner::Method(Arc::new(files.load(&entry.name, dataset)?)))
+        }
+        _ => None,
+    };
+    let runner = external.as_ref().unwrap_or(&entry.runner);
     let predictions: Vec<(Result<Prediction, String>, f64)> = dataset
         .pairs
         .par_iter()
@@ -174,13 +186,11 @@ pub fn run_set_entry(
         .map(|(i, pair)| {
             let started = Instant::now();
             // Checked as a pair run checks it (lengths, finiteness) before it is lifted.
-            let prediction =
-                predict_pair(&entry.runner, pair, source_flows.as_ref().map(|f| &f[i])).and_then(
-                    |p| match check_prediction(&p, pair.input()) {
-                        Ok(()) => Ok(p),
-                        Err(e) => Err(format!("pair {}: {e}", pair.id())),
-                    },
-                );
+            let prediction = predict_pair(runner, pair, source_flows.as_ref().map(|f| &f[i]))
+                .and_then(|p| match check_prediction(&p, pair.input()) {
+                    Ok(()) => Ok(p),
+                    Err(e) => Err(format!("pair {}: {e}", pair.id())),
+                });
             progress();
             (prediction, started.elapsed().as_secs_f64() * 1e3)
         })
