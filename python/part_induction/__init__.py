@@ -17,7 +17,7 @@ from .dataset import (
     collate_numpy,
     open_dataset,
 )
-from .sets import Set, SetDataset, SetJoint, SetView, open_set_dataset
+from .sets import Set, SetDataset, SetJoint, SetView, collate_sets_numpy, open_set_dataset
 from .predictions import (
     PredictedJoint,
     PredictionError,
@@ -42,5 +42,6 @@ __all__ = [
     "collate_numpy",
     "open_dataset",
     "open_set_dataset",
+    "collate_sets_numpy",
     "read_predictions",
 ]

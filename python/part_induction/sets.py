@@ -13,7 +13,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Dict, Iterator, List, Optional, Union
+from typing import Any, Dict, Iterator, List, Optional, Sequence, Union
 
 import cbor2
 import numpy as np
@@ -295,6 +295,40 @@ class SetDataset(_Folder):
             raise DatasetError(
                 f"{path}: holds {count} sets but the manifest announces {len(self)} (truncated?)"
             )
+
+
+def collate_sets_numpy(batch: Sequence[Set]) -> Dict[str, Any]:
+    """Stacks sets of the same number of views K and points N per view: ``points`` float32
+    [B, K, N, 3], ``parts`` int64 [B, K, N] (set parts, one id per part in every view),
+    ``flow`` float32 [B, K, N, 3] (view 0's points moved into each view's state, minus view
+    0's points; zeros for view 0), ``num_parts`` int64 [B]; ``id`` a list of str and
+    ``kinds`` each set's view kinds. :func:`part_induction.torch.collate_sets` makes tensors
+    of them.
+
+    Raises
+    ------
+    ValueError
+        On an empty batch, or sets that differ in K or in N.
+    """
+    if not batch:
+        raise ValueError("collate_sets_numpy needs at least one set")
+    shapes = sorted({(len(s.views), *sorted({len(v.points) for v in s.views})) for s in batch})
+    if len(shapes) != 1 or len(shapes[0]) != 2:
+        raise ValueError(
+            f"sets of one K and one N per view stack; these have (K, N...) {shapes}"
+        )
+
+    def stack(get: Any, dtype: Any) -> np.ndarray:
+        return np.stack([np.stack([get(v) for v in s.views]) for s in batch]).astype(dtype)
+
+    return {
+        "id": [s.id for s in batch],
+        "kinds": [[v.kind for v in s.views] for s in batch],
+        "points": stack(lambda v: v.points, np.float32),
+        "parts": stack(lambda v: v.parts, np.int64),
+        "flow": stack(lambda v: v.flow, np.float32),
+        "num_parts": np.array([s.num_parts for s in batch], dtype=np.int64),
+    }
 
 
 def open_set_dataset(path: PathLike, *, images: Union[bool, str] = False) -> SetDataset:

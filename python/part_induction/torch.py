@@ -1,5 +1,6 @@
-"""PyTorch access to a dataset: a random-access ``torch.utils.data.Dataset`` of pairs and a
-collate function for ``DataLoader``. Importing this module imports torch; the rest of the
+"""PyTorch access to a dataset: random-access ``torch.utils.data.Dataset``\ s of pairs
+(:class:`PairDataset`) and of sets of K views (:class:`SetTorchDataset`) and collate
+functions for ``DataLoader``. Importing this module imports torch; the rest of the
 package never does.
 
 The batching itself is :func:`part_induction.dataset.collate_numpy` (plain numpy); this module
@@ -22,6 +23,7 @@ from .dataset import (
     DatasetError,
     Pair,
     PathLike,
+    _iter_topic,
     collate_numpy,
     decode_pair,
     iter_messages,
@@ -108,4 +110,71 @@ def collate_pairs(batch: Sequence[Pair]) -> Dict[str, Any]:
     return {
         key: torch.from_numpy(value) if isinstance(value, np.ndarray) else value
         for key, value in collate_numpy(batch).items()
+    }
+
+
+class SetTorchDataset(_TorchDataset):
+    """The sets of a set dataset folder (``generator --kind sets``), by index: the
+    PyTorch counterpart of :class:`PairDataset` for K observations of one object.
+
+    On first access it reads the raw CBOR bytes of every ``/set`` message into memory (one
+    pass over ``sets.mcap``) and decodes one set per ``__getitem__``
+    (:func:`part_induction.sets.decode_set`, with its checks).
+
+    Examples
+    --------
+    >>> from torch.utils.data import DataLoader
+    >>> loader = DataLoader(SetTorchDataset("datasets/sets-scan"), batch_size=8,
+    ...                     collate_fn=collate_sets)
+    >>> next(iter(loader))["points"].shape
+    torch.Size([8, 4, 512, 3])
+    """
+
+    def __init__(self, path: PathLike):
+        from .sets import SetDataset
+
+        self.dataset = SetDataset(path)
+        self._messages: Optional[List[bytes]] = None
+
+    def __len__(self) -> int:
+        return len(self.dataset)
+
+    def __getitem__(self, index: int) -> Any:
+        from .sets import SET_TOPIC, SETS_FILE, decode_set
+
+        if index < 0:
+            index += len(self)
+        if not 0 <= index < len(self):
+            raise IndexError(f"set {index} of a dataset of {len(self)}")
+        where = f"{self.dataset.path / SETS_FILE}: {SET_TOPIC} message {index}"
+        try:
+            record = cbor2.loads(self._raw()[index])
+        except Exception as e:  # cbor2 raises several types; all mean "not our record"
+            raise DatasetError(f"{where}: not valid CBOR: {e}") from e
+        return decode_set(record, where)
+
+    def _raw(self) -> List[bytes]:
+        from .sets import SET_TOPIC, SETS_FILE, _check_set_channel
+
+        if self._messages is None:
+            path = self.dataset.path / SETS_FILE
+            messages = [data for _, data in _iter_topic(path, SET_TOPIC, _check_set_channel)]
+            if len(messages) != len(self.dataset):
+                raise DatasetError(
+                    f"{path}: holds {len(messages)} sets but the manifest announces "
+                    f"{len(self.dataset)} (truncated?)"
+                )
+            self._messages = messages
+        return self._messages
+
+
+def collate_sets(batch: Sequence[Any]) -> Dict[str, Any]:
+    """``collate_fn`` for a ``DataLoader`` over :class:`SetTorchDataset`: the arrays of
+    :func:`part_induction.sets.collate_sets_numpy` as tensors (same keys, shapes and dtypes;
+    ``id`` and ``kinds`` stay lists)."""
+    from .sets import collate_sets_numpy
+
+    return {
+        key: torch.from_numpy(value) if isinstance(value, np.ndarray) else value
+        for key, value in collate_sets_numpy(batch).items()
     }

@@ -95,3 +95,42 @@ def test_a_truncated_set_file_is_an_error(sets_dir: Path, tmp_path: Path) -> Non
     (broken / "sets.mcap").write_bytes(data[: len(data) // 2])
     with pytest.raises(DatasetError, match="sets.mcap"):
         list(open_set_dataset(broken))
+
+
+def test_sets_stack_into_batches(sets_dir: Path) -> None:
+    from part_induction import collate_sets_numpy, open_set_dataset
+
+    sets = list(open_set_dataset(sets_dir))
+    batch = collate_sets_numpy(sets)
+    k, n = len(sets[0].views), len(sets[0].views[0].points)
+    assert batch["points"].shape == (len(sets), k, n, 3) and batch["points"].dtype == np.float32
+    assert batch["parts"].shape == (len(sets), k, n) and batch["parts"].dtype == np.int64
+    assert batch["flow"].shape == (len(sets), k, n, 3)
+    for b, s in enumerate(sets):
+        assert batch["id"][b] == s.id and batch["kinds"][b] == [v.kind for v in s.views]
+        for view, v in enumerate(s.views):
+            np.testing.assert_array_equal(batch["points"][b, view], v.points)
+            np.testing.assert_array_equal(batch["parts"][b, view], v.parts)
+        # View 0's flow is zero; the others move view 0's points.
+        assert not batch["flow"][b, 0].any()
+    assert list(batch["num_parts"]) == [s.num_parts for s in sets]
+    cut = sets[0]
+    cut.views[1].points = cut.views[1].points[:-1]
+    with pytest.raises(ValueError, match="one K and one N"):
+        collate_sets_numpy([cut])
+
+
+def test_the_torch_set_dataset_reads_and_batches_sets(sets_dir: Path) -> None:
+    sets = list(open_set_dataset(sets_dir))
+    k, n = len(sets[0].views), len(sets[0].views[0].points)
+    torch = pytest.importorskip("torch", reason="torch is not installed (pip install torch)")
+    from torch.utils.data import DataLoader
+
+    from part_induction.torch import SetTorchDataset, collate_sets
+
+    data = SetTorchDataset(sets_dir)
+    assert len(data) == len(sets) and data[-1].id == sets[-1].id
+    loader = DataLoader(data, batch_size=len(sets), collate_fn=collate_sets)
+    first = next(iter(loader))
+    assert first["points"].shape == (len(sets), k, n, 3) and first["points"].dtype == torch.float32
+    assert first["parts"].dtype == torch.int64
