@@ -1,7 +1,9 @@
 //! Hashes the source of the crates whose code makes the evaluator's rows (`pairs`,
 //! `baselines`, `model`), the evaluator's own code that runs and scores them (`SCORING`:
 //! run, score, record, passes, joints, reference, tuning, external) and `Cargo.lock`
-//! (`LOCK`: a dependency's new version can move a number), so a row's cached runs are recomputed when any of it changes,
+//! (`LOCK`: a dependency's new version can move a number), and the set runner
+//! (`SETS`: `running/sets.rs`, in the set rows' fingerprints only), so a row's cached runs
+//! are recomputed when any of it changes,
 //! not only when its parameters or weights do (`SOURCE_HASH_<NAME>` at compile time).
 
 use std::path::{Path, PathBuf};
@@ -47,6 +49,10 @@ fn main() {
         println!("cargo:rerun-if-changed={}", path.display());
     }
     emit("SCORING", &src, scoring);
+    // The set runner, hashed on its own so that a change to it recomputes the set rows only.
+    let sets = src.join("running").join("sets.rs");
+    println!("cargo:rerun-if-changed={}", sets.display());
+    emit("SETS", &src, vec![sets]);
     let lock = root.join("Cargo.lock");
     println!("cargo:rerun-if-changed={}", lock.display());
     emit("LOCK", &root, vec![lock]);

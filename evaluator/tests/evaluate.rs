@@ -470,6 +470,9 @@ fn a_set_dataset_gets_a_set_board_of_the_segmentation_rows_and_leaves_the_pair_b
     // One part per view: the per-scan RI of a single segment is the chance that two points
     // share a part, below 1; the pair boards do not list the set dataset.
     assert!(number(&one, "per_scan_ri") < 1.0);
+    // Motions to every view: the pairs' true motions carried to the set beat one rigid fit.
+    assert!(number(&gt, "rotation_deg") < number(&one, "rotation_deg"), "{gt:?} {one:?}");
+    assert!(number(&gt, "translation") < number(&one, "translation"), "{gt:?} {one:?}");
     assert!(!read(&reports.join("leaderboard_seg.csv")).contains("tiny-sets"));
     assert!(read(&reports.join("LEADERBOARD.md")).contains("## Sets"));
     // A rerun reuses every run and writes the same board.
@@ -522,6 +525,8 @@ fn a_set_dataset_gets_a_set_board_of_the_segmentation_rows_and_leaves_the_pair_b
     for c in ["multi_scan_miou", "per_scan_miou", "multi_scan_ri", "per_scan_ri"] {
         assert_eq!(perfect[c], "1.0000", "{c}");
     }
+    // Labels without motions: no motion is scored.
+    assert_eq!((perfect["rotation_deg"].as_str(), perfect["translation"].as_str()), ("", ""));
     // The other rows stay, from the cache.
     assert!(board.iter().any(|r| r["method"] == "one-part"));
 }

@@ -65,5 +65,5 @@ pub use pair::{Pair, PairInput, PairKind, Pose, Provenance};
 pub use parts::{PartId, SegmentId};
 pub use scan::{Intrinsics, Scan, Scans};
 pub use set::{Set, SetInput, SetMode, SetTruth, View, ViewKind};
-pub use set_method::{PairsToSet, SetMethod, SetPrediction};
+pub use set_method::{lift_pairs, PairsToSet, SetMethod, SetPrediction};
 pub use transform::Similarity;

@@ -5,6 +5,7 @@ use crate::method::{Method, MethodError, Prediction};
 use crate::pair::PairInput;
 use crate::parts::SegmentId;
 use crate::set::SetInput;
+use crate::transform::Similarity;
 
 /// What a set method returns: one segment id per point of every view, an id naming the
 /// same part in every view (the multi-scan scores need that).
@@ -12,6 +13,10 @@ use crate::set::SetInput;
 pub struct SetPrediction {
     /// `segments[k]`: the segment of every point of view k.
     pub segments: Vec<Vec<SegmentId>>,
+    /// `motions[k][s]`: segment s's motion from view 0's normalised frame to view k's (the
+    /// identity for k = 0); a non-finite motion, a missing entry or an empty `motions[k]`
+    /// means none (not scored). Empty when the method estimates no motion.
+    pub motions: Vec<Vec<Similarity>>,
 }
 
 /// A method that segments K views of one object at once (MultiBodySync's setting).
@@ -72,6 +77,7 @@ pub fn lift_pairs(input: &SetInput, predictions: &[Prediction]) -> Result<SetPre
         return Err(format!("{} pair predictions for a set of {k} views", predictions.len()));
     }
     let mut segments: Vec<Vec<SegmentId>> = Vec::with_capacity(k);
+    let mut motions: Vec<Vec<Similarity>> = Vec::with_capacity(k);
     for (view, prediction) in (1..k).zip(predictions) {
         let id = format!("{}-0-{view}", input.id);
         let (p, q) = (&input.views[0].cloud.points, &input.views[view].cloud.points);
@@ -84,8 +90,11 @@ pub fn lift_pairs(input: &SetInput, predictions: &[Prediction]) -> Result<SetPre
         }
         if view == 1 {
             segments.push(prediction.segments_p.clone());
+            let labels = segments[0].iter().copied().max().map_or(0, |m| m as usize + 1);
+            motions.push(vec![Similarity::identity(); labels]);
         }
         let base = &segments[0];
+        motions.push(carried_motions(&prediction.segments_p, &prediction.motions, base));
         let carried = if prediction.segments_q.len() == q.len() {
             rename(&prediction.segments_p, &prediction.segments_q, base)
         } else if let Some(flow) = prediction.flow.as_ref().filter(|f| f.len() == p.len()) {
@@ -107,7 +116,42 @@ pub fn lift_pairs(input: &SetInput, predictions: &[Prediction]) -> Result<SetPre
         };
         segments.push(carried);
     }
-    Ok(SetPrediction { segments })
+    if motions[1..].iter().all(Vec::is_empty) {
+        motions.clear();
+    }
+    Ok(SetPrediction { segments, motions })
+}
+
+/// The motion of each view-0 label `b` in one pair (0, k): the motion of the pair's
+/// P-segment that overlaps `b` most on view 0 (ties to the smaller id); NaN where that
+/// segment has none. Empty when the pair's prediction has no motions.
+fn carried_motions(
+    pair_p: &[SegmentId],
+    motions: &[Similarity],
+    base: &[SegmentId],
+) -> Vec<Similarity> {
+    use std::collections::BTreeMap;
+    if motions.is_empty() {
+        return Vec::new();
+    }
+    let mut overlap: BTreeMap<SegmentId, BTreeMap<SegmentId, usize>> = BTreeMap::new();
+    for (&s, &b) in pair_p.iter().zip(base) {
+        *overlap.entry(b).or_default().entry(s).or_default() += 1;
+    }
+    let none = Similarity {
+        rotation: crate::math::Matrix3::from_element(f32::NAN),
+        translation: crate::math::Vector3::from_element(f32::NAN),
+        scale: f32::NAN,
+    };
+    let labels = base.iter().copied().max().map_or(0, |m| m as usize + 1);
+    (0..labels as SegmentId)
+        .map(|b| {
+            let segment = overlap
+                .get(&b)
+                .and_then(|counts| counts.iter().rev().max_by_key(|(_, &c)| c).map(|(&s, _)| s));
+            segment.and_then(|s| motions.get(s as usize)).copied().unwrap_or(none)
+        })
+        .collect()
 }
 
 /// Q's segments renamed to the view-0 labels their P-side counterparts overlap most.
@@ -162,7 +206,17 @@ mod tests {
                 let parts = &self.0.truth().parts[view];
                 parts.iter().map(|&p| (u32::from(p) + k as u32) % 3 + 10 * k as u32).collect()
             };
-            Ok(Prediction { segments_p: ids(0), segments_q: ids(k), ..Default::default() })
+            // Each segment's motion is its part's, at the renamed id (NaN elsewhere).
+            let truth = self.0.truth();
+            let nan = Similarity {
+                rotation: crate::math::Matrix3::from_element(f32::NAN),
+                ..Similarity::identity()
+            };
+            let mut motions = vec![nan; 10 * k + 3];
+            for (part, motion) in truth.motions[k].iter().enumerate() {
+                motions[(part + k) % 3 + 10 * k] = *motion;
+            }
+            Ok(Prediction { segments_p: ids(0), segments_q: ids(k), motions, ..Default::default() })
         }
     }
 
@@ -174,6 +228,16 @@ mod tests {
         assert_eq!(prediction.segments.len(), 4);
         let scores = score_set(&prediction.segments, &set.truth().parts).expect("scores");
         assert_eq!(scores.multi_scan_iou, 1.0, "{scores:?}");
+        // The motions follow the labels: every part's motion to every view k >= 1 is exact.
+        assert_eq!(prediction.motions.len(), 4);
+        let score = crate::metrics::score_set_prediction(&prediction, set.truth()).expect("scores");
+        assert_eq!(score.motions.rotation_deg.len(), 2 * 3, "{score:?}");
+        assert!(score.motions.rotation_deg.iter().all(|&e| e < 1e-2), "{score:?}");
+        assert!(score.motions.translation.iter().all(|&e| e < 1e-6), "{score:?}");
+        // Without motions, none are scored.
+        let bare = SetPrediction { motions: Vec::new(), ..prediction.clone() };
+        let score = crate::metrics::score_set_prediction(&bare, set.truth()).expect("scores");
+        assert!(score.motions.rotation_deg.is_empty());
         // The pairs' own ids, not renamed, are right per view but not across views.
         let raw: Vec<Vec<SegmentId>> = (0..4)
             .map(|k| {

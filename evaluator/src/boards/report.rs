@@ -168,7 +168,10 @@ pub fn write_report(
              label its segment overlaps most. Multi-scan mIoU matches parts to segments once for \
              all K views, so a label must name the same part in every view; per-scan mIoU \
              matches each view on its own. Means over sets; failed sets are left out and \
-             counted.\n\n",
+             counted. Rotation and translation errors are those of each matched part's motion \
+             from view 0 to every other view (the motion of the pair (0, k)'s segment that \
+             overlaps the label most), averaged over all of them; empty for a row without \
+             motions.\n\n",
         );
         let head: Vec<String> = [
             "dataset",
@@ -179,6 +182,8 @@ pub fn write_report(
             "per-scan mIoU",
             "multi-scan RI",
             "per-scan RI",
+            "rotation° ↓",
+            "translation ↓",
             "sets",
             "failed",
         ]
@@ -197,6 +202,8 @@ pub fn write_report(
                     cell(r.per_scan_miou),
                     cell(r.multi_scan_ri),
                     cell(r.per_scan_ri),
+                    cell(r.rotation_deg),
+                    cell(r.translation),
                     r.sets.to_string(),
                     r.failed.to_string(),
                 ]

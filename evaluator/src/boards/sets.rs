@@ -1,6 +1,7 @@
 //! The set board (`leaderboard_sets.csv`): every segmentation row on every set dataset, its
 //! per-set scores (`crate::running::sets`) averaged over the scored sets: multi-scan and
-//! per-scan mIoU and Rand index in MultiBodySync's conventions (docs/METRICS.md, "Sets").
+//! per-scan mIoU and Rand index in MultiBodySync's conventions, and the mean rotation and
+//! translation errors of the matched parts' motions to every view (docs/METRICS.md, "Sets").
 //! A failed set is left out of the means and counted in `failed`, as a failed pair is on
 //! the pair boards.
 
@@ -49,6 +50,11 @@ pub struct SetBoardRow {
     pub multi_scan_ri: f64,
     /// Mean per-scan Rand index.
     pub per_scan_ri: f64,
+    /// Mean rotation error (degrees) of the matched parts' motions to every view k >= 1,
+    /// over all of them (NaN when there is none: the row estimates no motion).
+    pub rotation_deg: f64,
+    /// Mean translation error of the same motions.
+    pub translation: f64,
     /// Sets of the dataset.
     pub sets: usize,
     /// Sets the row failed on.
@@ -80,11 +86,22 @@ pub fn set_board(scored: &[ScoredSets]) -> Vec<SetBoardRow> {
                 per_scan_miou: mean(|r| r.per_scan_iou),
                 multi_scan_ri: mean(|r| r.multi_scan_ri),
                 per_scan_ri: mean(|r| r.per_scan_ri),
+                rotation_deg: ratio(&ok, |r| r.rotation_sum),
+                translation: ratio(&ok, |r| r.translation_sum),
                 sets: s.rows.len(),
                 failed: s.rows.len() - ok.len(),
             }
         })
         .collect()
+}
+
+/// A sum over sets divided by their matched motions (NaN without any).
+fn ratio(rows: &[&SetRow], sum: fn(&SetRow) -> Option<f64>) -> f64 {
+    let matched: u32 = rows.iter().filter_map(|r| r.matched).sum();
+    if matched == 0 {
+        return f64::NAN;
+    }
+    rows.iter().filter_map(|r| sum(r)).sum::<f64>() / f64::from(matched)
 }
 
 /// A board cell: four decimals, as the pair boards write them; empty for NaN.
@@ -108,13 +125,13 @@ pub fn write_set_board(reports: &Path, rows: &[SetBoardRow]) -> Result<(), EvalE
         writeln!(
             w,
             "dataset,method,flow_source,oracle,views,multi_scan_miou,per_scan_miou,\
-             multi_scan_ri,per_scan_ri,sets,failed"
+             multi_scan_ri,per_scan_ri,rotation_deg,translation,sets,failed"
         )
         .map_err(io)?;
         for r in rows {
             writeln!(
                 w,
-                "{},{},{},{},{},{},{},{},{},{},{}",
+                "{},{},{},{},{},{},{},{},{},{},{},{},{}",
                 r.dataset,
                 r.method,
                 r.flow_source,
@@ -124,6 +141,8 @@ pub fn write_set_board(reports: &Path, rows: &[SetBoardRow]) -> Result<(), EvalE
                 cell(r.per_scan_miou),
                 cell(r.multi_scan_ri),
                 cell(r.per_scan_ri),
+                cell(r.rotation_deg),
+                cell(r.translation),
                 r.sets,
                 r.failed
             )
@@ -145,6 +164,7 @@ mod tests {
             Some([a, b, c, d]) => {
                 (r.multi_scan_iou, r.per_scan_iou) = (Some(a), Some(b));
                 (r.multi_scan_ri, r.per_scan_ri) = (Some(c), Some(d));
+                (r.matched, r.rotation_sum, r.translation_sum) = (Some(2), Some(3.0), Some(0.5));
             }
             None => r.failed = Some("no".into()),
         }
@@ -173,12 +193,14 @@ mod tests {
         assert_eq!((b.multi_scan_miou, b.per_scan_miou), (0.75, 0.375));
         assert_eq!((b.multi_scan_ri, b.per_scan_ri), (0.75, 0.5));
         assert_eq!((b.sets, b.failed, b.views), (3, 1, 4));
+        // Motion errors average over the matched motions of the scored sets: 6° / 4, 1 / 4.
+        assert_eq!((b.rotation_deg, b.translation), (1.5, 0.25));
         let dir = tempfile::tempdir().expect("a temporary folder");
         write_set_board(dir.path(), &board).expect("written");
         let text = std::fs::read_to_string(dir.path().join(SET_BOARD_FILE)).expect("read");
         assert_eq!(
             text.lines().nth(1),
-            Some("s,one-part,gt-flow,true,4,0.7500,0.3750,0.7500,0.5000,3,1")
+            Some("s,one-part,gt-flow,true,4,0.7500,0.3750,0.7500,0.5000,1.5000,0.2500,3,1")
         );
     }
 }

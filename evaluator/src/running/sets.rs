@@ -1,7 +1,8 @@
 //! Running one row on one set dataset: the row predicts every pair (view 0, view k) of every
 //! set (in parallel over pairs, as a pair run does), the predictions of each set are lifted
 //! to the set by the documented rule (`pairs::set_method::lift_pairs`, docs/METRICS.md
-//! "Sets") and scored with `pairs::metrics::score_set`. The per-set results are cached in
+//! "Sets") and scored with `pairs::metrics::score_set_prediction` (segmentation, and the
+//! motion of every matched part to every view). The per-set results are cached in
 //! `<runs>/<dataset>/<row>.csv` with a `.json` sidecar naming the row's fingerprint and the
 //! sets file's content hash, reused only while both match.
 
@@ -10,7 +11,7 @@ use std::sync::Arc;
 use std::time::Instant;
 
 use pairs::atomic::replace_bytes;
-use pairs::metrics::{check_prediction, score_set, SetScores};
+use pairs::metrics::{check_prediction, score_set_prediction, SetScore};
 use pairs::set_method::lift_pairs;
 use pairs::Prediction;
 use rayon::prelude::*;
@@ -45,6 +46,12 @@ pub struct SetRow {
     pub multi_scan_ri: Option<f64>,
     /// Per-scan Rand index.
     pub per_scan_ri: Option<f64>,
+    /// (Set part, view k >= 1) couples matched to a segment with a motion to view k.
+    pub matched: Option<u32>,
+    /// Summed rotation error of those motions, degrees.
+    pub rotation_sum: Option<f64>,
+    /// Summed translation error of those motions, view k's normalised units.
+    pub translation_sum: Option<f64>,
 }
 
 impl SetRow {
@@ -53,7 +60,7 @@ impl SetRow {
         self.failed.is_none()
     }
 
-    fn new(set: &pairs::Set, ms: f64, outcome: Result<SetScores, String>) -> Self {
+    fn new(set: &pairs::Set, ms: f64, outcome: Result<SetScore, String>) -> Self {
         let mut row = Self {
             set: set.id().to_owned(),
             category: set.provenance().category.clone(),
@@ -62,11 +69,14 @@ impl SetRow {
             ..Self::default()
         };
         match outcome {
-            Ok(s) => {
+            Ok(SetScore { scores: s, motions }) => {
                 row.multi_scan_iou = Some(s.multi_scan_iou);
                 row.per_scan_iou = Some(s.per_scan_iou);
                 row.multi_scan_ri = Some(s.multi_scan_ri);
                 row.per_scan_ri = Some(s.per_scan_ri);
+                row.matched = Some(motions.rotation_deg.len() as u32);
+                row.rotation_sum = Some(motions.rotation_deg.iter().sum());
+                row.translation_sum = Some(motions.translation.iter().sum());
             }
             Err(reason) => row.failed = Some(reason),
         }
@@ -75,7 +85,7 @@ impl SetRow {
 }
 
 /// The columns of a set runs file, [`SetRow`]'s fields.
-const HEADER: [&str; 9] = [
+const HEADER: [&str; 12] = [
     "set",
     "category",
     "views",
@@ -85,7 +95,17 @@ const HEADER: [&str; 9] = [
     "per_scan_iou",
     "multi_scan_ri",
     "per_scan_ri",
+    "matched",
+    "rotation_sum",
+    "translation_sum",
 ];
+
+/// The fingerprint of `entry`'s set run on `dataset`: its pair fingerprint and the set
+/// runner's own code (`SOURCE_HASH_SETS`: `running/sets.rs`), so that a change to how sets
+/// are run and lifted recomputes the set rows and only them.
+fn set_fingerprint(entry: &Entry, dataset: &str) -> String {
+    format!("{} sets {}", entry.fingerprint_for(dataset), env!("SOURCE_HASH_SETS"))
+}
 
 /// One row's results on one set dataset.
 #[derive(Debug, Clone)]
@@ -140,7 +160,7 @@ pub fn cached_set_run(
     let path = runs_path(&options.runs, name, &entry.name);
     read_meta(&path.with_extension("json")).filter(|m| {
         m.version == RUNS_VERSION
-            && m.fingerprint == entry.fingerprint_for(name)
+            && m.fingerprint == set_fingerprint(entry, name)
             && m.dataset == sets.pairs.content_hash
     })?;
     let rows = read_set_rows(&path).ok()?;
@@ -218,13 +238,13 @@ pub fn run_set_entry(
             .collect::<Result<Vec<_>, _>>()
             .and_then(|made| lift_pairs(set.input(), &made))
             .and_then(|lifted| {
-                score_set(&lifted.segments, &set.truth().parts).map_err(|e| e.to_string())
+                score_set_prediction(&lifted, set.truth()).map_err(|e| e.to_string())
             });
         rows.push(SetRow::new(set, ms, outcome));
     }
     let meta = RunMeta {
         version: RUNS_VERSION,
-        fingerprint: entry.fingerprint_for(&dataset.name),
+        fingerprint: set_fingerprint(entry, &dataset.name),
         dataset: dataset.content_hash.clone(),
         peak_mib: None,
         gallery: Default::default(),

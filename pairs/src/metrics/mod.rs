@@ -18,7 +18,7 @@ pub use joints::{joint_errors, joint_errors_of, line_to_line_distance, JointErro
 pub use motion::{motion_errors, segment_count, MotionErrors};
 pub use pair::{check_prediction, score_pair, FlowScore, PairScore, ScoreError, SegmentScore};
 pub use segmentation::{matched_iou, max_assignment, rand_index, PartMatching};
-pub use sets::{score_set, SetScores};
+pub use sets::{score_set, score_set_prediction, SetScore, SetScores};
 
 /// Inputs a metric cannot score.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

@@ -2,8 +2,11 @@
 //! true parts to predicted segments for the whole set (the multi-scan scores), and one per
 //! view (the per-scan scores). docs/METRICS.md, "Sets".
 
+use super::motion::{motion_errors, MotionErrors};
 use super::segmentation::{matched_iou, rand_index};
 use super::MetricError;
+use crate::set::SetTruth;
+use crate::set_method::SetPrediction;
 
 /// The segmentation scores of one set.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -49,6 +52,38 @@ pub fn score_set(predicted: &[Vec<u32>], truth: &[Vec<u8>]) -> Result<SetScores,
     })
 }
 
+/// Everything scored on one set: the segmentation scores and the motion errors.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SetScore {
+    /// Multi-scan and per-scan mIoU and RI ([`score_set`]).
+    pub scores: SetScores,
+    /// For every view k >= 1 and every set part matched (by the multi-scan matching) to a
+    /// segment with a motion to view k, the rotation and translation errors of that motion
+    /// against the part's true motion from view 0 to view k; empty when the prediction has no
+    /// motions.
+    pub motions: MotionErrors,
+}
+
+/// Scores a set prediction against the set's truth: [`score_set`] on its segments, and the
+/// motion of each matched part to every view k >= 1 (`pairs::metrics::motion_errors` under
+/// the multi-scan matching).
+pub fn score_set_prediction(
+    prediction: &SetPrediction,
+    truth: &SetTruth,
+) -> Result<SetScore, MetricError> {
+    let scores = score_set(&prediction.segments, &truth.parts)?;
+    let mut motions = MotionErrors::default();
+    if !prediction.motions.is_empty() {
+        let matching = matched_iou(&prediction.segments.concat(), &truth.parts.concat())?;
+        for (predicted, true_motions) in prediction.motions.iter().zip(&truth.motions).skip(1) {
+            let errors = motion_errors(&matching, predicted, true_motions);
+            motions.rotation_deg.extend(errors.rotation_deg);
+            motions.translation.extend(errors.translation);
+        }
+    }
+    Ok(SetScore { scores, motions })
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -78,6 +113,34 @@ mod tests {
         // C(3,2) + C(5,2) = 13, in the prediction C(5,2) + C(3,2) = 13, in both 5 (cells
         // {0,1}, {5,6,7}, {2,3}: 1 + 3 + 1); agreements 28 + 2 * 5 - 13 - 13 = 12.
         assert!((swapped.multi_scan_ri - 12.0 / 28.0).abs() < 1e-12, "{swapped:?}");
+    }
+
+    #[test]
+    fn motion_errors_of_every_part_in_every_view_under_the_multi_scan_matching() {
+        use crate::math::{Rotation3, Vector3};
+        let set = crate::synthetic::hinge_set("h", 4, &[0.0, 0.5, -0.4]);
+        let truth = set.truth();
+        // The truth under other ids (part p is segment 1 - p), with part 1's motion to view
+        // 2 turned by 10 degrees more and moved by 0.25.
+        let segments: Vec<Vec<u32>> =
+            truth.parts.iter().map(|v| v.iter().map(|&p| 1 - u32::from(p)).collect()).collect();
+        let mut motions: Vec<Vec<_>> = truth.motions.iter().map(|m| vec![m[1], m[0]]).collect();
+        let turn = Rotation3::from_axis_angle(&Vector3::z_axis(), 10f32.to_radians());
+        motions[2][0].rotation = turn.matrix() * motions[2][0].rotation;
+        motions[2][0].translation += Vector3::new(0.0, 0.25, 0.0);
+        let prediction = SetPrediction { segments, motions };
+        let score = score_set_prediction(&prediction, truth).expect("scores");
+        assert_eq!(score.scores.multi_scan_iou, 1.0);
+        // Two parts in views 1 and 2: four errors, one of them the turn.
+        let mut rotation = score.motions.rotation_deg.clone();
+        rotation.sort_by(f64::total_cmp);
+        assert_eq!(rotation.len(), 4);
+        assert!(rotation[..3].iter().all(|&e| e < 1e-2), "{rotation:?}");
+        assert!((rotation[3] - 10.0).abs() < 1e-2, "{rotation:?}");
+        let moved: Vec<f64> =
+            score.motions.translation.iter().copied().filter(|&t| t > 1e-6).collect();
+        assert_eq!(moved.len(), 1);
+        assert!((moved[0] - 0.25).abs() < 1e-6, "{moved:?}");
     }
 
     #[test]
