@@ -150,10 +150,7 @@ pub fn load_set_dataset(
     limit: Option<usize>,
 ) -> Result<LoadedSets, EvalError> {
     let err = |source| EvalError::Dataset { name: name.to_owned(), source };
-    let dataset = Dataset::open(dir).map_err(err)?;
-    dataset.verify().map_err(err)?;
-    let hash =
-        dataset.manifest().files.get(SETS_FILE).map(|f| f.sha256.clone()).unwrap_or_default();
+    let (dataset, content_hash, split) = open_verified(name, dir, SETS_FILE, limit)?;
     let sets: Vec<Set> = dataset
         .sets()
         .map_err(err)?
@@ -175,17 +172,6 @@ pub fn load_set_dataset(
             pairs.push(pair);
         }
     }
-    let content_hash = match limit {
-        Some(l) => format!("{hash}:first{l}"),
-        None => hash,
-    };
-    let split = dataset
-        .manifest()
-        .origin
-        .config
-        .get("split")
-        .and_then(|s| s.as_str())
-        .and_then(|s| s.parse().ok());
     let pairs =
         LoadedDataset { name: name.to_owned(), pairs, content_hash, split, cross_instance: false };
     Ok(LoadedSets { sets, pairs })
@@ -258,6 +244,33 @@ pub fn ensure_dataset(
     Ok(true)
 }
 
+/// Opens the dataset `name` in `dir` and verifies its checksums; returns it, its content
+/// hash (the sha256 of `records`, the file of its records, with `:first<N>` for a limited
+/// load) and the category split its manifest's config names.
+fn open_verified(
+    name: &str,
+    dir: &Path,
+    records: &str,
+    limit: Option<usize>,
+) -> Result<(Dataset, String, Option<Split>), EvalError> {
+    let err = |source| EvalError::Dataset { name: name.to_owned(), source };
+    let dataset = Dataset::open(dir).map_err(err)?;
+    dataset.verify().map_err(err)?;
+    let hash = dataset.manifest().files.get(records).map(|f| f.sha256.clone()).unwrap_or_default();
+    let content_hash = match limit {
+        Some(l) => format!("{hash}:first{l}"),
+        None => hash,
+    };
+    let split = dataset
+        .manifest()
+        .origin
+        .config
+        .get("split")
+        .and_then(|s| s.as_str())
+        .and_then(|s| s.parse().ok());
+    Ok((dataset, content_hash, split))
+}
+
 /// Loads the dataset `name` from `dir` (verifying its checksums), keeping the first `limit`
 /// pairs when a limit is given.
 pub fn load_dataset(
@@ -266,27 +279,13 @@ pub fn load_dataset(
     limit: Option<usize>,
 ) -> Result<LoadedDataset, EvalError> {
     let err = |source| EvalError::Dataset { name: name.to_owned(), source };
-    let dataset = Dataset::open(dir).map_err(err)?;
-    dataset.verify().map_err(err)?;
-    let hash =
-        dataset.manifest().files.get(PAIRS_FILE).map(|f| f.sha256.clone()).unwrap_or_default();
-    let split = dataset
-        .manifest()
-        .origin
-        .config
-        .get("split")
-        .and_then(|s| s.as_str())
-        .and_then(|s| s.parse().ok());
+    let (dataset, content_hash, split) = open_verified(name, dir, PAIRS_FILE, limit)?;
     let pairs: Vec<Pair> = dataset
         .pairs()
         .map_err(err)?
         .take(limit.unwrap_or(usize::MAX))
         .collect::<Result<_, _>>()
         .map_err(err)?;
-    let content_hash = match limit {
-        Some(l) => format!("{hash}:first{l}"),
-        None => hash,
-    };
     if pairs.is_empty() {
         return Err(EvalError::EmptyDataset { name: name.to_owned(), dir: dir.to_path_buf() });
     }

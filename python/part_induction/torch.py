@@ -9,7 +9,7 @@ only turns its arrays into tensors.
 
 from __future__ import annotations
 
-from typing import Any, Dict, List, Optional, Sequence
+from typing import Any, Dict, List, Optional, Sequence, Tuple
 
 import cbor2
 import numpy as np
@@ -29,6 +29,32 @@ from .dataset import (
     iter_messages,
     subsample_pair,
 )
+
+
+def _record(
+    raw: List[bytes], index: int, what: str, path: Any, topic: str
+) -> Tuple[int, Any, str]:
+    """Message ``index`` (negative from the end) of ``raw`` decoded from CBOR, with its
+    index and the place errors name."""
+    if index < 0:
+        index += len(raw)
+    if not 0 <= index < len(raw):
+        raise IndexError(f"{what} {index} of a dataset of {len(raw)}")
+    where = f"{path}: {topic} message {index}"
+    try:
+        return index, cbor2.loads(raw[index]), where
+    except Exception as e:  # cbor2 raises several types; all mean "not our record"
+        raise DatasetError(f"{where}: not valid CBOR: {e}") from e
+
+
+def _all(messages: Any, path: Any, expected: int, what: str) -> List[bytes]:
+    """Every message's bytes, checked against the number the manifest announces."""
+    out = [data for _, data in messages]
+    if len(out) != expected:
+        raise DatasetError(
+            f"{path}: holds {len(out)} {what} but the manifest announces {expected} (truncated?)"
+        )
+    return out
 
 
 class PairDataset(_TorchDataset):
@@ -75,15 +101,8 @@ class PairDataset(_TorchDataset):
         return len(self.dataset)
 
     def __getitem__(self, index: int) -> Pair:
-        if index < 0:
-            index += len(self)
-        if not 0 <= index < len(self):
-            raise IndexError(f"pair {index} of a dataset of {len(self)}")
-        where = f"{self.dataset.path / PAIRS_FILE}: {PAIR_TOPIC} message {index}"
-        try:
-            record = cbor2.loads(self._raw()[index])
-        except Exception as e:  # cbor2 raises several types; all mean "not our record"
-            raise DatasetError(f"{where}: not valid CBOR: {e}") from e
+        path = self.dataset.path / PAIRS_FILE
+        index, record, where = _record(self._raw(), index, "pair", path, PAIR_TOPIC)
         pair = decode_pair(record, where)
         if self.points is not None:
             rng = np.random.default_rng(None if self.seed is None else (self.seed, index))
@@ -93,13 +112,7 @@ class PairDataset(_TorchDataset):
     def _raw(self) -> List[bytes]:
         if self._messages is None:
             path = self.dataset.path / PAIRS_FILE
-            messages = [data for _, data in iter_messages(path)]
-            if len(messages) != len(self.dataset):
-                raise DatasetError(
-                    f"{path}: holds {len(messages)} pairs but the manifest announces "
-                    f"{len(self.dataset)} (truncated?)"
-                )
-            self._messages = messages
+            self._messages = _all(iter_messages(path), path, len(self.dataset), "pairs")
         return self._messages
 
 
@@ -142,15 +155,8 @@ class SetTorchDataset(_TorchDataset):
     def __getitem__(self, index: int) -> Any:
         from .sets import SET_TOPIC, SETS_FILE, decode_set
 
-        if index < 0:
-            index += len(self)
-        if not 0 <= index < len(self):
-            raise IndexError(f"set {index} of a dataset of {len(self)}")
-        where = f"{self.dataset.path / SETS_FILE}: {SET_TOPIC} message {index}"
-        try:
-            record = cbor2.loads(self._raw()[index])
-        except Exception as e:  # cbor2 raises several types; all mean "not our record"
-            raise DatasetError(f"{where}: not valid CBOR: {e}") from e
+        path = self.dataset.path / SETS_FILE
+        _, record, where = _record(self._raw(), index, "set", path, SET_TOPIC)
         return decode_set(record, where)
 
     def _raw(self) -> List[bytes]:
@@ -158,13 +164,8 @@ class SetTorchDataset(_TorchDataset):
 
         if self._messages is None:
             path = self.dataset.path / SETS_FILE
-            messages = [data for _, data in _iter_topic(path, SET_TOPIC, _check_set_channel)]
-            if len(messages) != len(self.dataset):
-                raise DatasetError(
-                    f"{path}: holds {len(messages)} sets but the manifest announces "
-                    f"{len(self.dataset)} (truncated?)"
-                )
-            self._messages = messages
+            messages = _iter_topic(path, SET_TOPIC, _check_set_channel)
+            self._messages = _all(messages, path, len(self.dataset), "sets")
         return self._messages
 
 

@@ -7,7 +7,6 @@
 //! full-dataset reports alone.
 
 use std::path::PathBuf;
-use std::sync::Arc;
 
 use pairs::Prediction;
 use rayon::prelude::*;
@@ -26,7 +25,9 @@ use crate::datasets::{
 };
 use crate::error::EvalError;
 use crate::rows::registry::{Board, Entry, Registry, Runner};
-use crate::running::run::{cached_run, predict_pair, run_entry, FlowCache, RunOptions, RunResult};
+use crate::running::run::{
+    cached_run, predict_pair, prepare, run_entry, FlowCache, RunOptions, RunResult,
+};
 use crate::running::sets::{cached_set_run, run_set_entry, runs_on_sets, SetRunResult};
 use crate::tuning::{cached_sweep, sweep_key, tune, Sweep};
 
@@ -316,15 +317,8 @@ pub fn predict_row(
     let (entries, _) =
         resolve_tuning(registry.entries(), &selected, true, options, &flows, progress)?;
     let entry = entries.into_iter().find(|e| e.name == row).expect("selected above");
-    let source_flows = match &entry.runner {
-        Runner::Segmenter { flow, .. } => Some(flows.get(flow, &dataset)),
-        _ => None,
-    };
-    let external = match &entry.runner {
-        Runner::External(files) => Some(Runner::Method(Arc::new(files.load(row, &dataset)?))),
-        _ => None,
-    };
-    let runner = external.as_ref().unwrap_or(&entry.runner);
+    let (source_flows, runner) = prepare(&entry, &dataset, &flows)?;
+    let runner = &runner;
     progress.start(row, &dataset.name, dataset.pairs.len() as u64);
     let predictions = dataset
         .pairs

@@ -253,18 +253,8 @@ pub fn run_entry(
     let path = runs_path(&options.runs, &dataset.name, &entry.name);
     let meta_path = path.with_extension("json");
     // The flow source runs before the memory reset: its cost is its own row's.
-    let source_flows = match &entry.runner {
-        Runner::Segmenter { flow, .. } => Some(flows.get(flow, dataset)),
-        _ => None,
-    };
-    // An external row's file is read and checked against the dataset before any pair runs.
-    let external = match &entry.runner {
-        Runner::External(files) => {
-            Some(Runner::Method(Arc::new(files.load(&entry.name, dataset)?)))
-        }
-        _ => None,
-    };
-    let runner = external.as_ref().unwrap_or(&entry.runner);
+    let (source_flows, runner) = prepare(entry, dataset, flows)?;
+    let runner = &runner;
     memory::reset_peak();
     let iterative = iterative(runner);
     type Outcome = (
@@ -333,16 +323,47 @@ pub fn run_entry(
         peak_mib: memory::peak_mib(),
         gallery,
     };
-    // The old sidecar goes first: new results never sit beside an old fingerprint.
-    if meta_path.exists() {
-        std::fs::remove_file(&meta_path)
-            .map_err(|source| EvalError::Io { path: meta_path.clone(), source })?;
-    }
-    write_rows(&path, &records)?;
-    if let Some(passes) = &passes {
-        write_passes(&passes_path(&path), passes)?;
-    }
-    let json = serde_json::to_string_pretty(&meta).expect("run metadata serialises");
-    replace_bytes(&meta_path, json.as_bytes())?;
+    replace_run(&meta_path, &meta, || {
+        write_rows(&path, &records)?;
+        match &passes {
+            Some(passes) => write_passes(&passes_path(&path), passes),
+            None => Ok(()),
+        }
+    })?;
     Ok(RunResult { rows: records, meta, cached: false, passes })
+}
+
+/// What a row needs before its pairs run on `dataset`: a segmenter's flow source's flows
+/// (computed once per source and dataset), and the runner that predicts (an external row's
+/// prediction file read and checked against the dataset first, else the row's own).
+pub fn prepare(
+    entry: &Entry,
+    dataset: &LoadedDataset,
+    flows: &FlowCache,
+) -> Result<(Option<SourceFlows>, Runner), EvalError> {
+    let source_flows = match &entry.runner {
+        Runner::Segmenter { flow, .. } => Some(flows.get(flow, dataset)),
+        _ => None,
+    };
+    let runner = match &entry.runner {
+        Runner::External(files) => Runner::Method(Arc::new(files.load(&entry.name, dataset)?)),
+        runner => runner.clone(),
+    };
+    Ok((source_flows, runner))
+}
+
+/// Replaces a run's files: the old sidecar `meta_path` goes first (new results never sit
+/// beside an old fingerprint), then `write` writes the results, then the new sidecar.
+pub(crate) fn replace_run(
+    meta_path: &Path,
+    meta: &RunMeta,
+    write: impl FnOnce() -> Result<(), EvalError>,
+) -> Result<(), EvalError> {
+    if meta_path.exists() {
+        std::fs::remove_file(meta_path)
+            .map_err(|source| EvalError::Io { path: meta_path.to_path_buf(), source })?;
+    }
+    write()?;
+    let json = serde_json::to_string_pretty(meta).expect("run metadata serialises");
+    Ok(replace_bytes(meta_path, json.as_bytes())?)
 }

@@ -7,10 +7,8 @@
 //! sets file's content hash, reused only while both match.
 
 use std::path::Path;
-use std::sync::Arc;
 use std::time::Instant;
 
-use pairs::atomic::replace_bytes;
 use pairs::metrics::{check_prediction, score_set_prediction, SetScore};
 use pairs::set_method::lift_pairs;
 use pairs::Prediction;
@@ -21,7 +19,9 @@ use crate::datasets::LoadedSets;
 use crate::error::EvalError;
 use crate::rows::registry::{Entry, Runner};
 use crate::running::record::read_csv;
-use crate::running::run::{predict_pair, runs_path, FlowCache, RunMeta, RunOptions, RUNS_VERSION};
+use crate::running::run::{
+    predict_pair, prepare, replace_run, runs_path, FlowCache, RunMeta, RunOptions, RUNS_VERSION,
+};
 use pairs::atomic::replace_file;
 
 /// One set's row of a set runs file: its four scores, or why it failed.
@@ -186,19 +186,9 @@ pub fn run_set_entry(
     let dataset = &sets.pairs;
     let path = runs_path(&options.runs, &dataset.name, &entry.name);
     let meta_path = path.with_extension("json");
-    let source_flows = match &entry.runner {
-        Runner::Segmenter { flow, .. } => Some(flows.get(flow, dataset)),
-        _ => None,
-    };
-    // A prediction file for a set dataset holds the pairs (0, k) (docs/FORMAT.md), read and
-    // checked against them before anything runs.
-    let external = match &entry.runner {
-        Runner::External(files) => {
-            Some(Runner::Method(Arc::new(files.load(&entry.name, dataset)?)))
-        }
-        _ => None,
-    };
-    let runner = external.as_ref().unwrap_or(&entry.runner);
+    // A prediction file for a set dataset holds the pairs (0, k) (docs/FORMAT.md).
+    let (source_flows, runner) = prepare(entry, dataset, flows)?;
+    let runner = &runner;
     let predictions: Vec<(Result<Prediction, String>, f64)> = dataset
         .pairs
         .par_iter()
@@ -249,13 +239,6 @@ pub fn run_set_entry(
         peak_mib: None,
         gallery: Default::default(),
     };
-    // The old sidecar goes first: new results never sit beside an old fingerprint.
-    if meta_path.exists() {
-        std::fs::remove_file(&meta_path)
-            .map_err(|source| EvalError::Io { path: meta_path.clone(), source })?;
-    }
-    write_set_rows(&path, &rows)?;
-    let json = serde_json::to_string_pretty(&meta).expect("run metadata serialises");
-    replace_bytes(&meta_path, json.as_bytes())?;
+    replace_run(&meta_path, &meta, || write_set_rows(&path, &rows))?;
     Ok(SetRunResult { rows, cached: false })
 }
