@@ -302,11 +302,12 @@ fn run(args: Args) -> Result<()> {
         format!("remembering the user datasets in {}", summary.reports.display())
     })?;
     eprintln!(
-        "{} runs ({} fresh, {} cached), {} failed pairs, {:.1} s; wrote {}/LEADERBOARD.md",
+        "{} runs ({} fresh, {} cached), {} failed pairs, {} failed sets, {:.1} s; wrote {}/LEADERBOARD.md",
         summary.fresh + summary.cached,
         summary.fresh,
         summary.cached,
         summary.failed,
+        summary.failed_sets,
         started.elapsed().as_secs_f64(),
         summary.reports.display()
     );

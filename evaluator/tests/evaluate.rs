@@ -458,6 +458,7 @@ fn a_set_dataset_gets_a_set_board_of_the_segmentation_rows_and_leaves_the_pair_b
     // nothing is averaged.
     let broken = row("broken");
     assert_eq!((broken["failed"].as_str(), broken["multi_scan_miou"].as_str()), ("2", ""));
+    assert_eq!(first.failed_sets, 2);
     let (gt, one) = (row("gt"), row("one-part"));
     let number = |r: &std::collections::HashMap<String, String>, c: &str| -> f64 {
         r[c].parse().expect("a number")

@@ -92,6 +92,8 @@ pub struct Summary {
     pub cached: usize,
     /// Failed pairs over all rows in the tables.
     pub failed: usize,
+    /// Failed sets over all rows of the set board.
+    pub failed_sets: usize,
     /// Where the reports were written.
     pub reports: PathBuf,
     /// The sweeps of the tuned rows in the tables.
@@ -246,9 +248,8 @@ pub fn evaluate(
             result,
         })
         .collect();
-    let failed =
-        scored.iter().map(|s| s.result.rows.iter().filter(|r| !r.scored()).count()).sum::<usize>()
-            + set_board.iter().map(|r| r.failed).sum::<usize>();
+    let failed = scored.iter().map(|s| s.result.rows.iter().filter(|r| !r.scored()).count()).sum();
+    let failed_sets = set_board.iter().map(|r| r.failed).sum();
     std::fs::create_dir_all(&reports)
         .map_err(|source| EvalError::Io { path: reports.clone(), source })?;
     let mut boards = Leaderboards::build(&scored)?;
@@ -277,6 +278,7 @@ pub fn evaluate(
         fresh,
         cached,
         failed,
+        failed_sets,
         reports,
         sweeps,
         iterations,
