@@ -125,18 +125,27 @@ def test_the_example_method_writes_one_prediction_per_pair(
 
 
 def _miou(predicted: np.ndarray, truth: np.ndarray) -> float:
-    """Mean IoU over true parts under the Hungarian matching of parts to segments
-    (MultiBodySync's and docs/METRICS.md's convention), computed here with scipy."""
+    """MultiBodySync's segmentation mIoU (``IoULoss`` in huangjh-pub/multibody-sync's
+    ``loss.py``, transcribed from torch to numpy for one set): the labels of all views pooled
+    (``segm.reshape(n_batch, -1)``), one-hot predictions with at least as many columns as
+    true parts (their ``s``; empty columns added here score IoU 0), a Hungarian matching
+    maximising IoU (``linear_sum_assignment(..., maximize=True)``), and the mean IoU of the
+    matched true parts, each ``inter / (union + 1e-8)``."""
     from scipy.optimize import linear_sum_assignment
 
-    parts, segments = np.unique(truth), np.unique(predicted)
-    iou = np.zeros((len(parts), len(segments)))
-    for i, p in enumerate(parts):
-        for j, s in enumerate(segments):
-            a, b = truth == p, predicted == s
-            iou[i, j] = (a & b).sum() / (a | b).sum()
-    rows_, cols = linear_sum_assignment(-iou)
-    return float(iou[rows_, cols].sum() / len(parts))
+    _, gt = np.unique(truth, return_inverse=True)  # their ids start from 0, contiguous
+    _, pd = np.unique(predicted, return_inverse=True)
+    n_gt = gt.max() + 1
+    s = max(pd.max() + 1, n_gt)
+    gt_onehot = np.eye(s)[gt]  # (N, s)
+    pd_onehot = np.eye(s)[pd]
+    matching = np.einsum("ng,np->gp", gt_onehot, pd_onehot)
+    union = gt_onehot.sum(0)[:, None] + pd_onehot.sum(0)[None, :] - matching
+    score = matching / (union + 1e-8)
+    rows_, cols = linear_sum_assignment(score[:n_gt], maximize=True)
+    inter = (gt_onehot[:, rows_] * pd_onehot[:, cols]).sum(0)
+    union = gt_onehot[:, rows_].sum(0) + pd_onehot[:, cols].sum(0) - inter
+    return float((inter / (union + 1e-8)).mean())
 
 
 @pytest.mark.evaluator
@@ -171,7 +180,7 @@ def test_a_set_method_from_python_is_scored_onto_the_set_board(
     assert perfect["flow_source"] == "external" and perfect["failed"] == "0"
     for column in ("multi_scan_miou", "per_scan_miou", "multi_scan_ri", "per_scan_ri"):
         assert perfect[column] == "1.0000", column
-    # The example's scores, recomputed here from its labels with scipy's Hungarian matching.
+    # The example's scores, recomputed here from its labels with MultiBodySync's own metric.
     import importlib.util
 
     spec = importlib.util.spec_from_file_location("lower_upper_sets", example)
