@@ -4,8 +4,10 @@
 //! estimated from them ([`joints`]). Every function is pure and checks its inputs' lengths.
 //! [`pair`] puts them together into the one score of a pair ([`score_pair`]) and [`sets`]
 //! into the score of a set of K views ([`score_set`]); the evaluator's rows and iteration
-//! passes and the trainer's validation all use these two.
+//! passes and the trainer's validation all use these two. [`conventions`] gives joint
+//! errors the way PARIS and DigitalTwinArt report them.
 
+pub mod conventions;
 pub mod flow;
 pub mod joints;
 pub mod motion;
