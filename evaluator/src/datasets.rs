@@ -125,9 +125,13 @@ pub fn default_set_datasets() -> Vec<DatasetSpec> {
     vec![DatasetSpec::generated("sets-scan", config)]
 }
 
-/// Whether the dataset folder `dir` holds sets (its manifest counts sets).
-pub fn holds_sets(dir: &Path) -> bool {
-    Dataset::open(dir).is_ok_and(|d| d.holds_sets())
+/// Whether `spec` is a set dataset: its generator config makes sets, or (a user's dataset)
+/// the manifest in its folder `dir` counts sets.
+pub fn holds_sets(spec: &DatasetSpec, dir: &Path) -> bool {
+    match &spec.config {
+        Some(config) => config.sets.is_some(),
+        None => Dataset::open(dir).is_ok_and(|d| d.holds_sets()),
+    }
 }
 
 /// A loaded set dataset: its sets in file order, and the pairs (view 0, view k) of every

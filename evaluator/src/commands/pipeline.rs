@@ -150,7 +150,7 @@ pub fn evaluate(
         } else if !dir.join(pairs::dataset::MANIFEST_FILE).exists() {
             continue;
         }
-        if spec.config.as_ref().map_or_else(|| holds_sets(&dir), |c| c.sets.is_some()) {
+        if holds_sets(spec, &dir) {
             loaded_sets.push((load_set_dataset(&spec.name, &dir, options.limit)?, chosen));
             continue;
         }
@@ -179,11 +179,7 @@ pub fn evaluate(
             if !entry.runs_on(&dataset.name, dataset.cross_instance) {
                 continue;
             }
-            // An external row is scored by `evaluator score`; other runs take it from the
-            // cache unless `--methods` names it.
-            let external = matches!(entry.runner, Runner::External(_));
-            let named = options.methods.contains(&entry.name);
-            if !chosen || !selected.iter().any(|s| s.name == entry.name) || (external && !named) {
+            if !runs_now(entry, *chosen, &selected, options) {
                 if let Some(result) = cached_run(entry, dataset, &run_options) {
                     results.push((d, e, result));
                 }
@@ -211,9 +207,7 @@ pub fn evaluate(
             if !runs_on_sets(entry, name) {
                 continue;
             }
-            let external = matches!(entry.runner, Runner::External(_));
-            let named = options.methods.contains(&entry.name);
-            if !chosen || !selected.iter().any(|s| s.name == entry.name) || (external && !named) {
+            if !runs_now(entry, *chosen, &selected, options) {
                 if let Some(result) = cached_set_run(entry, sets, &run_options) {
                     set_results.push((d, e, result));
                 }
@@ -286,6 +280,16 @@ pub fn evaluate(
     })
 }
 
+/// Whether `entry` runs now on a dataset (`chosen`: selected by `--datasets`), rather than
+/// joining the tables from its cached run: it is selected, and an external row (scored by
+/// `evaluator score`) only when `--methods` names it.
+fn runs_now(entry: &Entry, chosen: bool, selected: &[Entry], options: &Options) -> bool {
+    let external = matches!(entry.runner, Runner::External(_));
+    chosen
+        && selected.iter().any(|s| s.name == entry.name)
+        && (!external || options.methods.contains(&entry.name))
+}
+
 /// Every prediction of row `row` on the dataset `options.datasets[0]` (made when missing),
 /// in the dataset's pair order, as the leaderboards would score them: a tuned row with its
 /// chosen parameters (tuned now unless its sweep is cached), a segmenter on its flow
@@ -309,7 +313,7 @@ pub fn predict_row(
     let dir = spec.dir(&options.datasets_root);
     // On a set dataset the row predicts the pairs (view 0, view k) of every set, the records
     // a set prediction file holds (docs/FORMAT.md).
-    let dataset = if holds_sets(&dir) {
+    let dataset = if holds_sets(spec, &dir) {
         load_set_dataset(&spec.name, &dir, options.limit)?.pairs
     } else {
         load_dataset(&spec.name, &dir, options.limit)?

@@ -190,8 +190,24 @@ pub fn runs_path(runs: &Path, dataset: &str, entry: &str) -> PathBuf {
     runs.join(dataset).join(format!("{entry}.csv"))
 }
 
-fn read_meta(path: &Path) -> Option<RunMeta> {
-    serde_json::from_str(&std::fs::read_to_string(path).ok()?).ok()
+/// The sidecar of the runs file `path` when it matches: this evaluator's runs version, the
+/// fingerprint `fingerprint` and the dataset content hash `dataset`.
+pub(crate) fn matching_meta(path: &Path, fingerprint: &str, dataset: &str) -> Option<RunMeta> {
+    let text = std::fs::read_to_string(path.with_extension("json")).ok()?;
+    serde_json::from_str::<RunMeta>(&text).ok().filter(|m| {
+        m.version == RUNS_VERSION && m.fingerprint == fingerprint && m.dataset == dataset
+    })
+}
+
+/// The flow a whole method's prediction offers the segmenters on its flow, or why none.
+pub(crate) fn own_flow(
+    row: &str,
+    prediction: &Result<Prediction, String>,
+) -> Result<Vec<Vector3>, String> {
+    match prediction {
+        Ok(p) => p.flow.clone().ok_or_else(|| format!("{row} reports no flow")),
+        Err(reason) => Err(reason.clone()),
+    }
 }
 
 /// Options of a run.
@@ -213,11 +229,7 @@ pub fn cached_run(
     options: &RunOptions,
 ) -> Option<RunResult> {
     let path = runs_path(&options.runs, &dataset.name, &entry.name);
-    let meta = read_meta(&path.with_extension("json")).filter(|m| {
-        m.version == RUNS_VERSION
-            && m.fingerprint == entry.fingerprint_for(&dataset.name)
-            && m.dataset == dataset.content_hash
-    })?;
+    let meta = matching_meta(&path, &entry.fingerprint_for(&dataset.name), &dataset.content_hash)?;
     let rows = read_rows(&path).ok().filter(|rows| rows.len() == dataset.pairs.len())?;
     let failed = |id: &String| rows.iter().any(|r| &r.pair == id && !r.scored());
     let complete = options.gallery.iter().all(|id| meta.gallery.contains_key(id) || failed(id));
@@ -275,10 +287,7 @@ pub fn run_entry(
                 None => (predict_pair(runner, pair, flow), None),
             };
             let ms = started.elapsed().as_secs_f64() * 1e3;
-            let own_flow = match &prediction {
-                Ok(p) => p.flow.clone().ok_or_else(|| format!("{} reports no flow", entry.name)),
-                Err(reason) => Err(reason.clone()),
-            };
+            let own_flow = own_flow(&entry.name, &prediction);
             let outcome = prediction.and_then(|p| {
                 let scored = guarded(|| {
                     score_pair(&p, pair.input(), pair.truth()).map_err(|e| e.to_string())

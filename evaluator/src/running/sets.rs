@@ -20,7 +20,8 @@ use crate::error::EvalError;
 use crate::rows::registry::{Entry, Runner};
 use crate::running::record::read_csv;
 use crate::running::run::{
-    predict_pair, prepare, replace_run, runs_path, FlowCache, RunMeta, RunOptions, RUNS_VERSION,
+    matching_meta, own_flow, predict_pair, prepare, replace_run, runs_path, FlowCache, RunMeta,
+    RunOptions, RUNS_VERSION,
 };
 use pairs::atomic::replace_file;
 
@@ -120,14 +121,7 @@ pub struct SetRunResult {
 /// board (a flow-only row gives no segments to carry); a row read from prediction files
 /// only where it has a file for that dataset (`evaluator score`).
 pub fn runs_on_sets(entry: &Entry, dataset: &str) -> bool {
-    match &entry.runner {
-        Runner::External(files) => files.files.contains_key(dataset),
-        _ => entry.board != crate::rows::registry::Board::Flow,
-    }
-}
-
-fn read_meta(path: &Path) -> Option<RunMeta> {
-    serde_json::from_str(&std::fs::read_to_string(path).ok()?).ok()
+    entry.runs_on(dataset, false) && entry.board != crate::rows::registry::Board::Flow
 }
 
 /// Reads a set runs file.
@@ -158,11 +152,7 @@ pub fn cached_set_run(
 ) -> Option<SetRunResult> {
     let name = &sets.pairs.name;
     let path = runs_path(&options.runs, name, &entry.name);
-    read_meta(&path.with_extension("json")).filter(|m| {
-        m.version == RUNS_VERSION
-            && m.fingerprint == set_fingerprint(entry, name)
-            && m.dataset == sets.pairs.content_hash
-    })?;
+    matching_meta(&path, &set_fingerprint(entry, name), &sets.pairs.content_hash)?;
     let rows = read_set_rows(&path).ok()?;
     let same = rows.len() == sets.sets.len()
         && rows.iter().zip(&sets.sets).all(|(row, set)| row.set == set.id());
@@ -206,13 +196,7 @@ pub fn run_set_entry(
         })
         .collect();
     if let Runner::Method(m) = &entry.runner {
-        let own: Vec<_> = predictions
-            .iter()
-            .map(|(p, _)| match p {
-                Ok(p) => p.flow.clone().ok_or_else(|| format!("{} reports no flow", entry.name)),
-                Err(reason) => Err(reason.clone()),
-            })
-            .collect();
+        let own = predictions.iter().map(|(p, _)| own_flow(&entry.name, p)).collect();
         flows.offer(m.name(), &dataset.name, own);
     }
     let mut rows = Vec::with_capacity(sets.sets.len());
