@@ -28,6 +28,7 @@ pub mod import;
 pub mod kinematics;
 pub mod label;
 pub mod mesh;
+pub mod multiview;
 pub mod objects;
 pub mod protocol;
 pub mod sampling;

@@ -24,6 +24,10 @@ pub enum Stream {
     Set(u32),
     /// Everything of view `k` of candidate set `c` (pose, samples, scan): `View(c, k)`.
     View(u32, u32),
+    /// The rendered states of an object (`generator render`).
+    RenderStates,
+    /// The material and texture an object is rendered with (`generator render`).
+    Appearance,
 }
 
 /// The random stream for `purpose` of object `object` in a dataset with `seed`.
@@ -41,6 +45,9 @@ pub fn rng_for(seed: u64, object: u64, purpose: Stream) -> Rng {
         Stream::Set(s) => 1 << 21 | (u64::from(s) & 0xffff),
         // Bit 20 under a clear bit 21: 12 bits of candidate set, 8 of view.
         Stream::View(c, k) => 1 << 20 | (u64::from(c) & 0xfff) << 8 | (u64::from(k) & 0xff),
+        // Bit 19 under clear bits 20 to 23: apart from `Pair(k)` below 2^19 and the above.
+        Stream::RenderStates => 1 << 19,
+        Stream::Appearance => 1 << 19 | 1,
     };
     // ChaCha's 64-bit stream id: 24 bits of purpose under 40 bits of object index.
     rng.set_stream((object << 24) | (purpose & 0xff_ffff));
@@ -65,5 +72,7 @@ mod tests {
         assert_ne!(draw(3, Stream::Set(0)), draw(3, Stream::View(0, 0)));
         assert_ne!(draw(3, Stream::View(0, 1)), draw(3, Stream::View(1, 0)));
         assert_ne!(draw(3, Stream::View(0, 0)), draw(3, Stream::Pair(0)));
+        assert_ne!(draw(3, Stream::RenderStates), draw(3, Stream::Appearance));
+        assert_ne!(draw(3, Stream::Appearance), draw(3, Stream::States));
     }
 }

@@ -57,7 +57,7 @@ pub fn encode(
     })
 }
 
-fn png(
+pub(crate) fn png(
     data: &[u8],
     width: u32,
     height: u32,

@@ -28,11 +28,14 @@ pub struct Hit {
     pub facing: Real,
     /// Whether the ray met the triangle's back (inside a link's surface).
     pub back: bool,
+    /// Unit normal of the triangle hit (object frame), turned towards the ray's origin.
+    pub normal: Vector3,
 }
 
 /// All links of an object in one articulation state and pose.
 pub struct PosedScene {
     mesh: TriMesh,
+    poses: Vec<Isometry3>,
     link_of_triangle: Vec<u32>,
     min: Point3,
     max: Point3,
@@ -57,7 +60,7 @@ impl PosedScene {
             });
         let mesh =
             TriMesh::new(vertices, triangles).map_err(|e| SceneError::Mesh(e.to_string()))?;
-        Ok(Self { mesh, link_of_triangle, min, max })
+        Ok(Self { mesh, poses: poses.to_vec(), link_of_triangle, min, max })
     }
 
     /// Centre of the posed object's bounding box.
@@ -68,6 +71,11 @@ impl PosedScene {
     /// Diagonal of the posed object's bounding box, object units.
     pub fn diagonal(&self) -> Real {
         (self.max - self.min).norm()
+    }
+
+    /// Pose of every link (rest frame to object frame) in this state.
+    pub fn poses(&self) -> &[Isometry3] {
+        &self.poses
     }
 
     /// The eight corners of the bounding box.
@@ -93,11 +101,13 @@ impl PosedScene {
         };
         let (triangle, back) =
             if face >= triangles { (face - triangles, true) } else { (face, false) };
+        let facing = -hit.normal.dot(direction);
         Some(Hit {
             distance: hit.time_of_impact,
             link: self.link_of_triangle[triangle as usize] as usize,
-            facing: -hit.normal.dot(direction),
+            facing,
             back,
+            normal: if facing < 0.0 { -hit.normal } else { hit.normal },
         })
     }
 }

@@ -11,6 +11,8 @@ use generator::shard::merge_shards;
 use indicatif::{ProgressBar, ProgressStyle};
 use pairs::dataset::Manifest;
 
+use generator::config::GeneratorConfig;
+
 use crate::Selection;
 
 /// `generator export-objects`.
@@ -22,9 +24,31 @@ pub(crate) fn export_objects_command(
     let config = selection.config()?;
     config.validate().context("checking the config")?;
     let started = std::time::Instant::now();
+    let objects = selected_objects(selection, &config, "exported")?;
+    let bar = progress_bar(objects.len() as u64, "objects");
+    bar.set_message(format!("exporting {}", out.display()));
+    let written = export_objects(&config, &objects, out, force, |n| bar.set_position(n))
+        .with_context(|| format!("exporting objects to {}", out.display()))?;
+    bar.finish_and_clear();
+    println!(
+        "wrote {} objects to {} in {:.2} s",
+        written.len(),
+        out.display(),
+        started.elapsed().as_secs_f64()
+    );
+    Ok(())
+}
+
+/// The objects a selection names: the built-in objects of the config, or every asset
+/// that loads (the others are listed on stderr as not `what`).
+pub(crate) fn selected_objects(
+    selection: &Selection,
+    config: &GeneratorConfig,
+    what: &str,
+) -> Result<Vec<ObjectToExport>> {
     let objects = match &selection.assets {
         Some(root) => {
-            let sources = load_assets(root, &config)
+            let sources = load_assets(root, config)
                 .with_context(|| format!("looking for assets in {}", root.display()))?;
             let mut objects = Vec::with_capacity(sources.len());
             let mut failed = 0;
@@ -46,24 +70,13 @@ pub(crate) fn export_objects_command(
                 bail!("no asset in {} could be read", root.display());
             }
             if failed > 0 {
-                eprintln!("{failed} assets could not be read and are not exported");
+                eprintln!("{failed} assets could not be read and are not {what}");
             }
             objects
         }
-        None => built_in_objects(&config).context("building the objects")?,
+        None => built_in_objects(config).context("building the objects")?,
     };
-    let bar = progress_bar(objects.len() as u64, "objects");
-    bar.set_message(format!("exporting {}", out.display()));
-    let written = export_objects(&config, &objects, out, force, |n| bar.set_position(n))
-        .with_context(|| format!("exporting objects to {}", out.display()))?;
-    bar.finish_and_clear();
-    println!(
-        "wrote {} objects to {} in {:.2} s",
-        written.len(),
-        out.display(),
-        started.elapsed().as_secs_f64()
-    );
-    Ok(())
+    Ok(objects)
 }
 
 /// `generator export`.

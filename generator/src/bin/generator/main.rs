@@ -15,6 +15,7 @@ use pairs::dataset::Shard;
 use pairs::{PairKind, SetMode};
 
 mod commands;
+mod render;
 
 use commands::{export_command, export_objects_command, merge, progress_bar, report};
 
@@ -145,6 +146,7 @@ const EXAMPLES: &str = "Examples:
   generator --assets models/ --kind sf2p -o /tmp/m        pairs of your URDF, OBJ and glTF assets
   generator --gallery                                     reports/gallery/*.png
   generator export-objects -n 26 --out objects/           objects as URDF (PartNet-Mobility layout)
+  generator render --layout paris -n 5                    multi-view images for PARIS (see render --help)
   generator export --format yi-mat --dataset datasets/sf2f --out sf2f-mat";
 
 /// Subcommands besides generating.
@@ -177,6 +179,18 @@ enum Command {
         /// Replace the output folder's contents (only once the export is complete).
         #[arg(long)]
         force: bool,
+        /// Worker threads [default: all cores]; the output does not depend on it.
+        #[arg(short = 'j', long)]
+        threads: Option<usize>,
+    },
+    /// Render objects in two or more articulation states from V calibrated cameras for
+    /// image-based methods: RGB (materials and light, never the part), depth, part-label
+    /// and normal images, in our layout or PARIS's, DigitalTwinArt's or ArtGS's
+    /// (docs/FORMAT.md, "Renders").
+    #[command(after_help = render::RENDER_EXAMPLES)]
+    Render {
+        #[command(flatten)]
+        args: render::RenderArgs,
         /// Worker threads [default: all cores]; the output does not depend on it.
         #[arg(short = 'j', long)]
         threads: Option<usize>,
@@ -322,6 +336,10 @@ fn run(args: Args) -> Result<()> {
         Some(Command::ExportObjects { selection, out, force, threads }) => {
             set_threads(*threads)?;
             return export_objects_command(selection, out, *force);
+        }
+        Some(Command::Render { args, threads }) => {
+            set_threads(*threads)?;
+            return render::render_command(args);
         }
         Some(Command::Export { format, dataset, out, force }) => {
             return export_command(*format, dataset, out, *force);

@@ -1,0 +1,188 @@
+//! What PARIS, DigitalTwinArt and ArtGS read as ground truth, in a layout's world frame:
+//! `trans.json` (`trans_info.{type, axis.o, axis.d, rotate|translate.{l, r}}`, degrees or
+//! world units, start = `l`, end = `r`; PARIS `systems/utils.py:354-388`, DigitalTwinArt
+//! `utils/articulation_utils.py:72-97`, ArtGS `utils/metrics.py:268-293`) and the state
+//! meshes as triangle PLY files (`<state>{,_static,_dynamic,_dynamic_<i>}_rotate.ply`).
+
+use std::fmt::Write as _;
+use std::path::Path;
+
+use pairs::math::{Isometry3, Matrix3, Point3, Real, Rotation3, UnitQuaternion, Vector3};
+use pairs::{JointKind, PartId};
+use serde::Serialize;
+use serde_json::{json, Value};
+
+use super::write_bytes;
+use crate::multiview::{bounds, posed_mesh, JointStates, RenderError, RenderJob};
+use crate::scan::camera::Camera;
+
+/// The map from our object frame (Y up) to a layout's world: `x' = scale * C * (x - centre)`
+/// with `C = [[1,0,0],[0,0,-1],[0,1,0]]` when `z_up` (PARIS's `preprocess.py:245-252`),
+/// else the identity.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
+pub struct WorldFrame {
+    /// `scale`.
+    pub scale: Real,
+    /// `centre`, our object frame.
+    pub centre: [Real; 3],
+    /// Whether the world is Z-up.
+    pub z_up: bool,
+}
+
+impl WorldFrame {
+    /// Our object frame, unchanged.
+    pub fn identity() -> Self {
+        Self { scale: 1.0, centre: [0.0; 3], z_up: false }
+    }
+
+    /// Centred on the object's bounding box over every state and scaled so that its
+    /// largest half extent is 1.
+    pub fn normalised(job: &RenderJob, z_up: bool) -> Self {
+        let (lo, hi) = bounds(&job.scenes);
+        let half = (hi - lo).max() * 0.5;
+        Self { scale: 1.0 / half.max(1e-9), centre: nalgebra::center(&lo, &hi).coords.into(), z_up }
+    }
+
+    /// The rotation `C`.
+    pub fn axes(&self) -> Matrix3 {
+        if self.z_up {
+            Matrix3::new(1.0, 0.0, 0.0, 0.0, 0.0, -1.0, 0.0, 1.0, 0.0)
+        } else {
+            Matrix3::identity()
+        }
+    }
+
+    /// A point in the world.
+    pub fn point(&self, p: &Point3) -> Point3 {
+        Point3::from(self.axes() * (p - Point3::from(self.centre)) * self.scale)
+    }
+
+    /// A direction in the world.
+    pub fn direction(&self, d: &Vector3) -> Vector3 {
+        self.axes() * d
+    }
+
+    /// A camera-to-world matrix in the world, with OpenGL camera axes (x right, y up,
+    /// looking along -z): our OpenCV camera's y and z columns negated.
+    pub fn camera_to_world(&self, camera: &Camera) -> [[f64; 4]; 4] {
+        let r = self.axes()
+            * camera.pose.rotation.to_rotation_matrix().matrix()
+            * Matrix3::from_diagonal(&Vector3::new(1.0, -1.0, -1.0));
+        let t = self.point(&camera.centre());
+        std::array::from_fn(|i| match i {
+            3 => [0.0, 0.0, 0.0, 1.0],
+            _ => [r[(i, 0)], r[(i, 1)], r[(i, 2)], t[i]].map(f64::from),
+        })
+    }
+}
+
+/// The moving joints whose child starts a part, one per moving part, in part order.
+pub fn part_joints(job: &RenderJob) -> Vec<JointStates> {
+    let mut joints: Vec<JointStates> = job
+        .joints()
+        .into_iter()
+        .filter(|j| j.moves && job.part_of_link.iter().position(|&p| p == j.part) == Some(j.child))
+        .collect();
+    joints.sort_by_key(|j| j.part);
+    joints
+}
+
+/// One `trans_info` entry: the joint's axis in state 0 and its values in states 0 and 1.
+pub fn trans_entry(frame: &WorldFrame, joint: &JointStates) -> Value {
+    let o = frame.point(&Point3::from(joint.pivot[0]));
+    let d = frame.direction(&Vector3::from(joint.axis[0]));
+    let (name, l, r) = match joint.kind {
+        JointKind::Revolute => ("rotate", joint.value[0].to_degrees(), joint.value[1].to_degrees()),
+        JointKind::Prismatic => {
+            ("translate", joint.value[0] * frame.scale, joint.value[1] * frame.scale)
+        }
+    };
+    json!({
+        "type": name,
+        "axis": {"o": [o.x, o.y, o.z], "d": [d.x, d.y, d.z]},
+        name: {"l": l, "r": r},
+    })
+}
+
+/// `trans.json`: one entry as an object when one part moves, a list in part order when
+/// several do (DigitalTwinArt's multi-part form, `articulation_utils.py:72-97`).
+pub fn trans_json(frame: &WorldFrame, joints: &[JointStates]) -> Value {
+    let entries: Vec<Value> = joints.iter().map(|j| trans_entry(frame, j)).collect();
+    match entries.as_slice() {
+        [one] => json!({ "trans_info": one }),
+        _ => json!({ "trans_info": entries }),
+    }
+}
+
+/// The rigid motion of a `trans_info` entry from start to end: a rotation by `r - l`
+/// degrees about `d` through `o` (right-handed), or a shift by `(r - l) d`.
+pub fn entry_motion(info: &Value) -> Option<Isometry3> {
+    let v3 = |v: &Value| -> Option<Vector3> {
+        let a = v.as_array()?;
+        let c = |i: usize| a.get(i).and_then(Value::as_f64).map(|x| x as Real);
+        Some(Vector3::new(c(0)?, c(1)?, c(2)?))
+    };
+    let o = v3(info.get("axis")?.get("o")?)?;
+    let d = pairs::math::try_unit(&v3(info.get("axis")?.get("d")?)?)?;
+    let kind = info.get("type")?.as_str()?;
+    let block = info.get(kind)?;
+    let delta = (block.get("r")?.as_f64()? - block.get("l")?.as_f64()?) as Real;
+    match kind {
+        "rotate" => {
+            let rot = UnitQuaternion::from_rotation_matrix(&Rotation3::new(d * delta.to_radians()));
+            Some(Isometry3::from_parts((o - rot * o).into(), rot))
+        }
+        "translate" => Some(Isometry3::from_parts((d * delta).into(), UnitQuaternion::identity())),
+        _ => None,
+    }
+}
+
+/// Writes `<dir>/<state>/<state>{,_static,_dynamic[_<i>]}_rotate.ply` for each state
+/// named in `states` (state `s` of the job), in the world frame.
+pub fn write_meshes(
+    job: &RenderJob,
+    frame: &WorldFrame,
+    dir: &Path,
+    states: &[(usize, &str)],
+) -> Result<(), RenderError> {
+    let moving = job.parts - 1;
+    for &(s, name) in states {
+        let mut files: Vec<(String, Option<Vec<PartId>>)> = vec![
+            (format!("{name}_rotate.ply"), None),
+            (format!("{name}_static_rotate.ply"), Some(vec![0])),
+        ];
+        for i in 0..moving {
+            let file = match moving {
+                1 => format!("{name}_dynamic_rotate.ply"),
+                _ => format!("{name}_dynamic_{i}_rotate.ply"),
+            };
+            files.push((file, Some(vec![(i + 1) as PartId])));
+        }
+        for (file, parts) in files {
+            let (vertices, triangles) = posed_mesh(job, s, parts.as_deref());
+            let vertices: Vec<Point3> = vertices.iter().map(|v| frame.point(v)).collect();
+            write_bytes(&dir.join(name).join(file), ply_text(&vertices, &triangles).as_bytes())?;
+        }
+    }
+    Ok(())
+}
+
+/// An ASCII triangle PLY (what pytorch3d's `load_ply` reads).
+pub fn ply_text(vertices: &[Point3], triangles: &[[u32; 3]]) -> String {
+    let mut out = String::with_capacity(vertices.len() * 40 + triangles.len() * 20 + 200);
+    let _ = write!(
+        out,
+        "ply\nformat ascii 1.0\ncomment part_induction generator\nelement vertex {}\n\
+         property float x\nproperty float y\nproperty float z\nelement face {}\n\
+         property list uchar int vertex_indices\nend_header\n",
+        vertices.len(),
+        triangles.len()
+    );
+    for v in vertices {
+        let _ = writeln!(out, "{} {} {}", v.x, v.y, v.z);
+    }
+    for t in triangles {
+        let _ = writeln!(out, "3 {} {} {}", t[0], t[1], t[2]);
+    }
+    out
+}

@@ -1,0 +1,432 @@
+//! Multi-view renders for image-based methods (PARIS, DigitalTwinArt, ArtGS): an object in
+//! S articulation states, each seen by the same V calibrated cameras. Per view: an RGB
+//! image (material, procedural texture and a fixed light, [`appearance`]; never the part
+//! label), depth, part-label and normal images. [`layout`] writes them in our layout or in
+//! the layout a method's loader reads.
+//!
+//! Everything random (the states, the materials) flows from the seed and the object id;
+//! the cameras are fixed by the config, so the same config and seed give identical files.
+
+pub mod appearance;
+pub mod cameras;
+pub mod layout;
+pub mod shade;
+
+use std::path::PathBuf;
+
+use pairs::math::{Isometry3, Point3, Real};
+use pairs::{Intrinsics, JointKind, PartId};
+use rand::Rng as _;
+use serde::{Deserialize, Serialize};
+
+use crate::export::objects::ObjectToExport;
+use crate::kinematics::link_poses;
+use crate::objects::ArticulatedObject;
+use crate::scan::camera::Camera;
+use crate::scan::scene::{PosedScene, SceneError};
+use crate::seed::{rng_for, Stream};
+use appearance::{Appearance, Lighting, Material};
+use cameras::Placement;
+use shade::{shade, Shading, ViewImages};
+
+/// Largest image side a render accepts.
+pub const MAX_SIDE: u32 = 8192;
+
+/// How objects are rendered (the `[render]` settings of `generator render`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct RenderConfig {
+    /// Image width, pixels.
+    pub width: u32,
+    /// Image height, pixels.
+    pub height: u32,
+    /// Vertical field of view, degrees (square pixels, principal point at the centre).
+    pub fov_y_deg: f64,
+    /// Cameras per state (the same cameras see every state).
+    pub views: u32,
+    /// Where the cameras stand.
+    pub placement: Placement,
+    /// Fraction of the narrower field of view the object's bounding sphere (over all its
+    /// states) fills.
+    pub fill: f64,
+    /// Articulation states per object, at least 2.
+    pub states: u32,
+    /// Background colour, 8-bit RGB.
+    pub background: [u8; 3],
+    /// The lights.
+    pub lighting: Lighting,
+}
+
+impl Default for RenderConfig {
+    fn default() -> Self {
+        Self {
+            width: 640,
+            height: 480,
+            fov_y_deg: 40.0,
+            views: 24,
+            placement: Placement::Sphere,
+            fill: 0.9,
+            states: 2,
+            background: [255, 255, 255],
+            lighting: Lighting::default(),
+        }
+    }
+}
+
+impl RenderConfig {
+    /// Checks every field's range.
+    pub fn validate(&self) -> Result<(), RenderError> {
+        let bad = |field: &str, reason: String| RenderError::Config { field: field.into(), reason };
+        for (field, v) in [("width", self.width), ("height", self.height)] {
+            if v == 0 || v > MAX_SIDE {
+                return Err(bad(field, format!("{v} is not in 1..={MAX_SIDE}")));
+            }
+        }
+        if !(self.fov_y_deg > 1.0 && self.fov_y_deg < 179.0) {
+            return Err(bad("fov_y_deg", format!("{} is not in (1, 179)", self.fov_y_deg)));
+        }
+        if self.views == 0 || self.views > 10_000 {
+            return Err(bad("views", format!("{} is not in 1..=10000", self.views)));
+        }
+        if !(self.fill > 0.0 && self.fill <= 1.0) {
+            return Err(bad("fill", format!("{} is not in (0, 1]", self.fill)));
+        }
+        if !(2..=64).contains(&self.states) {
+            return Err(bad("states", format!("{} is not in 2..=64", self.states)));
+        }
+        let l = &self.lighting;
+        let lights_ok = l.lights.iter().all(|d| {
+            d.intensity.is_finite()
+                && d.intensity >= 0.0
+                && d.direction.iter().all(|x| x.is_finite())
+                && d.direction.iter().any(|&x| x != 0.0)
+        });
+        if !(l.ambient.is_finite() && l.ambient >= 0.0 && lights_ok) {
+            return Err(bad(
+                "lighting",
+                "ambient and intensities must be finite and >= 0, directions finite and non-zero"
+                    .into(),
+            ));
+        }
+        Ok(())
+    }
+
+    /// The cameras' intrinsics.
+    pub fn intrinsics(&self) -> Intrinsics {
+        Intrinsics::with_fov(self.width, self.height, (self.fov_y_deg as Real).to_radians())
+    }
+}
+
+/// Why a render failed.
+#[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
+pub enum RenderError {
+    /// A setting is out of range.
+    #[error("render setting {field}: {reason}")]
+    Config {
+        /// The field.
+        field: String,
+        /// What is wrong.
+        reason: String,
+    },
+    /// A camera file or camera is unusable.
+    #[error("cameras ({what}): {reason}")]
+    Cameras {
+        /// The file and camera.
+        what: String,
+        /// What is wrong.
+        reason: String,
+    },
+    /// An object cannot be ray cast.
+    #[error("object {object}: {source}")]
+    Scene {
+        /// The object's folder name.
+        object: String,
+        /// Why.
+        source: SceneError,
+    },
+    /// An object cannot be built.
+    #[error(transparent)]
+    Object(#[from] crate::generate::GenerateError),
+    /// A file cannot be read or written.
+    #[error("{path}: {source}")]
+    Io {
+        /// The file.
+        path: PathBuf,
+        /// Why.
+        source: std::io::Error,
+    },
+    /// An image cannot be encoded.
+    #[error("encoding {path}: {source}")]
+    Image {
+        /// The file.
+        path: PathBuf,
+        /// Why.
+        source: image::ImageError,
+    },
+    /// The output folder cannot be written.
+    #[error(transparent)]
+    Output(#[from] crate::export::output::OutputError),
+    /// A layout cannot hold this object.
+    #[error("object {object} cannot be written in the {layout} layout: {reason}")]
+    Layout {
+        /// The object's folder name.
+        object: String,
+        /// The layout.
+        layout: &'static str,
+        /// Why.
+        reason: String,
+    },
+}
+
+/// A joint in every rendered state.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct JointStates {
+    /// Joint name.
+    pub name: String,
+    /// Revolute or prismatic.
+    #[serde(rename = "type")]
+    pub kind: JointKind,
+    /// Parent link index.
+    pub parent: usize,
+    /// Child link index.
+    pub child: usize,
+    /// Part of the child link.
+    pub part: PartId,
+    /// Whether its value differs between states.
+    pub moves: bool,
+    /// Lower and upper limit (radians or object units).
+    pub limits: [Real; 2],
+    /// Value in each state.
+    pub value: Vec<Real>,
+    /// Unit axis in each state, object frame.
+    pub axis: Vec<[Real; 3]>,
+    /// A point of the axis in each state, object frame.
+    pub pivot: Vec<[Real; 3]>,
+}
+
+/// An object ready to render: its states, parts, cameras and materials.
+pub struct RenderJob {
+    /// The object and where it came from.
+    pub object: ObjectToExport,
+    /// Folder name (`<object id, 6 digits>_<category>`).
+    pub name: String,
+    /// Joint values of each state.
+    pub states: Vec<Vec<Real>>,
+    /// The posed object of each state.
+    pub scenes: Vec<PosedScene>,
+    /// Part of each link: a link starts a part when its joint's value differs between
+    /// states.
+    pub part_of_link: Vec<PartId>,
+    /// Number of parts.
+    pub parts: usize,
+    /// The cameras, shared by every state.
+    pub cameras: Vec<Camera>,
+    /// The materials.
+    pub appearance: Appearance,
+    /// Object units per unit of the 16-bit depth images: fits the farthest depth any view
+    /// can see.
+    pub depth_scale: Real,
+}
+
+impl RenderJob {
+    /// Draws the states and materials of `object` (from `seed` and its id), poses it, and
+    /// places the cameras (`cameras`, or the config's placement around every state's
+    /// bounding sphere) with the layout's intrinsics. For a layout of one moving part
+    /// (PARIS), only the object's first driven joint (and the joints that mimic it) moves;
+    /// the others keep their values of state 0.
+    pub fn new(
+        config: &RenderConfig,
+        seed: u64,
+        object: ObjectToExport,
+        cameras: Option<&[Camera]>,
+        layout: layout::Layout,
+    ) -> Result<Self, RenderError> {
+        let name = crate::export::objects::folder_name(object.object_id, &object.object.category);
+        let id = u64::from(object.object_id);
+        let mut states = draw_states(
+            &object.object,
+            config.states,
+            &mut rng_for(seed, id, Stream::RenderStates),
+        );
+        if layout.one_joint() {
+            hold_all_but_first(&object.object, &mut states);
+        }
+        let scenes = states
+            .iter()
+            .map(|values| PosedScene::new(&object.object, &link_poses(&object.object, values)))
+            .collect::<Result<Vec<_>, _>>()
+            .map_err(|source| RenderError::Scene { object: name.clone(), source })?;
+        let (lo, hi) = bounds(&scenes);
+        let centre = nalgebra::center(&lo, &hi);
+        let radius = 0.5 * (hi - lo).norm();
+        let cameras = match cameras {
+            Some(c) => c.to_vec(),
+            None => {
+                let k = layout.intrinsics(config);
+                let distance = cameras::fitting_distance(&k, radius, config.fill as Real);
+                cameras::placed(k, config.placement, config.views, &centre, distance)
+            }
+        };
+        let far =
+            cameras.iter().map(|c| (c.centre() - centre).norm() + radius).fold(0.0, Real::max);
+        let (part_of_link, parts) = parts_over_states(&object.object, &states);
+        let diagonal = scenes[0].diagonal();
+        let material = Material::draw(&mut rng_for(seed, id, Stream::Appearance), diagonal);
+        let appearance = Appearance::single(material, object.object.links.len());
+        Ok(Self {
+            object,
+            name,
+            states,
+            scenes,
+            part_of_link,
+            parts,
+            cameras,
+            appearance,
+            depth_scale: far / 65534.0,
+        })
+    }
+
+    /// Renders view `view` of state `state`.
+    pub fn view(&self, config: &RenderConfig, state: usize, view: usize) -> ViewImages {
+        self.view_from(config, state, &self.cameras[view])
+    }
+
+    /// Renders state `state` through any camera.
+    pub fn view_from(&self, config: &RenderConfig, state: usize, camera: &Camera) -> ViewImages {
+        let shading = Shading {
+            appearance: &self.appearance,
+            lighting: &config.lighting,
+            part_of_link: &self.part_of_link,
+            background: config.background.map(|c| Real::from(c) / 255.0),
+        };
+        shade(&self.scenes[state], camera, &shading)
+    }
+
+    /// Every joint in every state (axis and pivot placed by the parent link's pose).
+    pub fn joints(&self) -> Vec<JointStates> {
+        let object = &self.object.object;
+        object
+            .joints
+            .iter()
+            .enumerate()
+            .map(|(j, joint)| {
+                let value: Vec<Real> = self.states.iter().map(|s| s[j]).collect();
+                let parent_pose = |s: usize| self.scenes[s].poses()[joint.parent];
+                JointStates {
+                    name: joint.name.clone(),
+                    kind: joint.kind,
+                    parent: joint.parent,
+                    child: joint.child,
+                    part: self.part_of_link[joint.child],
+                    moves: value.iter().any(|&v| v != value[0]),
+                    limits: [joint.limits.0, joint.limits.1],
+                    axis: (0..self.states.len())
+                        .map(|s| (parent_pose(s).rotation * joint.axis).into())
+                        .collect(),
+                    pivot: (0..self.states.len())
+                        .map(|s| (parent_pose(s) * joint.pivot).coords.into())
+                        .collect(),
+                    value,
+                }
+            })
+            .collect()
+    }
+
+    /// Motion of each part from state `a` to state `b` (object frame): the pose change of
+    /// the part's links.
+    pub fn part_motion(&self, part: PartId, a: usize, b: usize) -> Isometry3 {
+        let link = self.part_of_link.iter().position(|&p| p == part).unwrap_or(0);
+        self.scenes[b].poses()[link] * self.scenes[a].poses()[link].inverse()
+    }
+}
+
+/// The states of a render: for each joint, value `s` is drawn in the `s`-th of S equal
+/// slices of its range (away from the slice's ends), so every joint moves between any two
+/// states and the states are ordered; mimic joints follow their leaders.
+pub fn draw_states(
+    object: &ArticulatedObject,
+    states: u32,
+    rng: &mut crate::seed::Rng,
+) -> Vec<Vec<Real>> {
+    let n = states as usize;
+    let mut values = vec![vec![0.0 as Real; object.joints.len()]; n];
+    for (j, joint) in object.joints.iter().enumerate() {
+        let (lo, hi) = joint.limits;
+        for (s, state) in values.iter_mut().enumerate() {
+            let t = (s as Real + rng.random_range(0.15..0.85)) / n as Real;
+            state[j] = lo + (hi - lo) * t;
+        }
+    }
+    for state in &mut values {
+        object.follow_mimics(state);
+    }
+    values
+}
+
+/// Keeps every joint but the first driven one (not a mimic follower) at its value of state
+/// 0; the first driven joint's followers follow it.
+fn hold_all_but_first(object: &ArticulatedObject, states: &mut [Vec<Real>]) {
+    let followers: Vec<usize> = object.mimics.iter().map(|m| m.joint).collect();
+    let Some(driven) = (0..object.joints.len()).find(|j| !followers.contains(j)) else {
+        return;
+    };
+    let first = states[0].clone();
+    for state in states.iter_mut() {
+        for (j, value) in state.iter_mut().enumerate() {
+            if j != driven {
+                *value = first[j];
+            }
+        }
+        object.follow_mimics(state);
+    }
+}
+
+/// Part of each link and the number of parts: a link starts its own part when its joint's
+/// value differs between any two states, and joins its parent's part otherwise.
+pub fn parts_over_states(object: &ArticulatedObject, states: &[Vec<Real>]) -> (Vec<PartId>, usize) {
+    let mut of_link: Vec<PartId> = vec![0; object.links.len()];
+    let mut parts = 1;
+    for link in 1..object.links.len() {
+        of_link[link] = match object.joints.iter().position(|j| j.child == link) {
+            Some(j) if states.iter().any(|s| s[j] != states[0][j]) => {
+                parts += 1;
+                (parts - 1) as PartId
+            }
+            Some(j) => of_link[object.joints[j].parent],
+            None => 0,
+        };
+    }
+    (of_link, parts)
+}
+
+/// The triangles of the links of `parts` (all parts when `None`) in state `state`, object
+/// frame: vertices and triangles.
+pub fn posed_mesh(
+    job: &RenderJob,
+    state: usize,
+    parts: Option<&[PartId]>,
+) -> (Vec<Point3>, Vec<[u32; 3]>) {
+    let mut vertices = Vec::new();
+    let mut triangles = Vec::new();
+    let poses = job.scenes[state].poses();
+    for (link, l) in job.object.object.links.iter().enumerate() {
+        if parts.is_some_and(|p| !p.contains(&job.part_of_link[link])) {
+            continue;
+        }
+        let first = vertices.len() as u32;
+        vertices.extend(l.mesh.vertices.iter().map(|v| poses[link] * v));
+        triangles.extend(l.mesh.triangles.iter().map(|t| t.map(|i| i + first)));
+    }
+    (vertices, triangles)
+}
+
+/// Bounding box (lowest and highest corner) of an object over its posed states.
+pub fn bounds(scenes: &[PosedScene]) -> (Point3, Point3) {
+    scenes
+        .iter()
+        .flat_map(|s| s.corners())
+        .fold((Point3::from([Real::MAX; 3]), Point3::from([Real::MIN; 3])), |(lo, hi), p| {
+            (lo.inf(&p), hi.sup(&p))
+        })
+}
