@@ -99,6 +99,9 @@ pub enum EvalError {
     /// broken; the error names the file).
     #[error(transparent)]
     Predictions(#[from] pairs::PredictionsError),
+    /// A render's ground truth or a joints-only prediction file cannot be used.
+    #[error(transparent)]
+    RenderFile(#[from] pairs::renders::RenderFileError),
     /// A prediction file does not fit the dataset it is scored on.
     #[error("predictions {}: {message}", path.display())]
     PredictionsMismatch {

@@ -30,6 +30,7 @@ use indicatif::{ProgressBar, ProgressStyle};
   evaluator --methods net-iter --limit 50           Table 4 (iterations.csv) on 50 pairs
   evaluator --list                                  the registered rows and datasets
   evaluator score --dataset sf2f --predictions mine.mcap --name mine   a method run elsewhere
+  evaluator score --dataset renders/paris --predictions joints.json   joints on a render
   evaluator predict --method net --dataset sf2f --out net.mcap          a row's predictions",
     args_conflicts_with_subcommands = true
 )]
@@ -78,6 +79,9 @@ enum Command {
     /// Score a prediction file (docs/FORMAT.md, "Prediction files") written by any program,
     /// e.g. the Python package's PredictionWriter, and add it to every board as an external
     /// row. Checks the file against the dataset first; a refused file changes no report.
+    /// On a render folder (`generator render`), the file is a joints-only prediction
+    /// (`joints.json`, docs/FORMAT.md "Joints-only predictions"), scored in every
+    /// convention into joints_renders.csv.
     Score {
         /// The dataset the file was made for: a name (see `evaluator --list`) or a dataset
         /// folder.
@@ -190,6 +194,30 @@ fn run_command(command: Command) -> Result<()> {
     let bars = Bars { bar: Mutex::new(None) };
     let started = Instant::now();
     match command {
+        Command::Score { dataset, predictions, name, common }
+            if pairs::renders::is_render(Path::new(&dataset)) =>
+        {
+            use evaluator::boards::render_joints::{
+                score_render, table, upsert, RENDER_JOINTS_FILE,
+            };
+            let dir = Path::new(&dataset);
+            let rows = score_render(dir, &predictions, name.as_deref()).with_context(|| {
+                format!("scoring {} on the render {dataset}", predictions.display())
+            })?;
+            upsert(&common.reports, &rows).with_context(|| {
+                format!("writing {}", common.reports.join(RENDER_JOINTS_FILE).display())
+            })?;
+            for line in table(&rows) {
+                println!("{line}");
+            }
+            eprintln!(
+                "scored {} as {} in {:.1} s; wrote {}",
+                predictions.display(),
+                rows[0].method,
+                started.elapsed().as_secs_f64(),
+                common.reports.join(RENDER_JOINTS_FILE).display()
+            );
+        }
         Command::Score { dataset, predictions, name, common } => {
             let registry = registry(&common.weights)?;
             let specs = dataset_specs(&common.reports, &common.datasets_root, &[])?;

@@ -198,7 +198,11 @@ fn renders_repeat_byte_for_byte_whatever_the_threads() {
         out
     };
     let (fa, fb) = (files(&a.path().join("r")), files(&b.path().join("r")));
-    assert_eq!(fa.len(), 2 * (2 + 2 * 4 * 4) + 1);
+    assert_eq!(
+        fa.len(),
+        2 * (2 + 2 * 4 * 4) + 2,
+        "per object 2 JSON and 32 images; render.json, ground_truth.json"
+    );
     assert!(fa == fb, "same files, same bytes");
 }
 
@@ -360,17 +364,36 @@ fn dta_layout_reads_back_like_its_loader() {
                 worst_depth_error(&meshes[*time], &depth, c2w, [k[0], k[4], k[2], k[5]], 1000.0);
             assert!(n > 100 && worst < 2e-3, "{name} {stem}: {n} points, {worst} m off the mesh");
         }
-        check_gt(&obj.join("gt"));
+        check_gt(&obj.join("gt"), &truth_of(&root, &name));
     }
 }
 
-/// The joints of `gt/trans.json` carry each start dynamic mesh onto the end one.
-fn check_gt(gt: &Path) {
+/// The record of the object in `folder` in the render's `ground_truth.json`.
+fn truth_of(root: &Path, folder: &str) -> Value {
+    let truth = json(&root.join("ground_truth.json"));
+    let objects = truth["objects"].as_array().expect("objects");
+    objects.iter().find(|o| o["folder"] == folder).expect("the object's truth").clone()
+}
+
+/// The joints of `gt/trans.json` carry each start dynamic mesh onto the end one, and
+/// `ground_truth.json` (`truth`, the object's record) holds the same joints.
+fn check_gt(gt: &Path, truth: &Value) {
     let trans = json(&gt.join("trans.json"));
     let entries: Vec<Value> = match &trans["trans_info"] {
         Value::Array(a) => a.clone(),
         one => vec![one.clone()],
     };
+    let joints = truth["joints"].as_array().expect("joints");
+    assert_eq!(joints.len(), entries.len());
+    for (entry, joint) in entries.iter().zip(joints) {
+        let j: pairs::renders::RenderJoint =
+            serde_json::from_value(serde_json::json!({"type": joint["type"], "axis": joint["axis"], "pivot": joint["pivot"], "state": joint["state"]})).expect("joint");
+        let kind = if j.kind == pairs::JointKind::Revolute { "rotate" } else { "translate" };
+        let change = if kind == "rotate" { j.state.to_degrees() } else { j.state };
+        let same = serde_json::json!({"type": kind, "axis": {"o": j.pivot, "d": j.axis}, kind: {"l": 0.0, "r": change}});
+        let (a, b) = (entry_motion(entry).expect("motion"), entry_motion(&same).expect("motion"));
+        assert!((a.to_homogeneous() - b.to_homogeneous()).abs().max() < 1e-4, "{entry} vs {joint}");
+    }
     for (i, entry) in entries.iter().enumerate() {
         let file = |state: &str| match entries.len() {
             1 => gt.join(format!("{state}/{state}_dynamic_rotate.ply")),
@@ -433,7 +456,7 @@ fn artgs_layout_reads_back_like_its_loader() {
                 );
             }
         }
-        check_gt(&obj.join("gt"));
+        check_gt(&obj.join("gt"), &truth_of(&root, &folder));
     }
 }
 

@@ -46,6 +46,7 @@ pub mod metrics;
 pub mod pair;
 pub mod parts;
 pub mod predictions;
+pub mod renders;
 pub mod sampling;
 pub mod scan;
 pub mod screw;

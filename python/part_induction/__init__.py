@@ -4,7 +4,8 @@ The formats are docs/FORMAT.md. :func:`open_dataset` streams a dataset's pairs a
 arrays, :func:`open_set_dataset` the sets of K views of a set dataset (each set's pairs
 with :meth:`Set.pair`), :class:`PredictionWriter` writes a method's predictions for
 ``evaluator score``, and ``part_induction.torch`` (which needs PyTorch; importing this package does not import it)
-wraps a dataset for a ``DataLoader``.
+wraps a dataset for a ``DataLoader``. ``part_induction.renders`` reads a render's ground truth
+(``generator render``) and writes joints-only predictions for it.
 """
 
 from .dataset import (
@@ -18,6 +19,12 @@ from .dataset import (
     open_dataset,
 )
 from .sets import Set, SetDataset, SetJoint, SetView, collate_sets_numpy, open_set_dataset
+from .renders import (
+    RenderError,
+    joint_from_trans,
+    read_ground_truth,
+    write_joint_predictions,
+)
 from .predictions import (
     PredictedJoint,
     PredictionError,
@@ -26,6 +33,10 @@ from .predictions import (
 )
 
 __all__ = [
+    "RenderError",
+    "joint_from_trans",
+    "read_ground_truth",
+    "write_joint_predictions",
     "Dataset",
     "DatasetError",
     "Joint",

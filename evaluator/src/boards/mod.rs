@@ -6,5 +6,6 @@ pub mod iterations;
 pub mod leaderboard;
 pub mod paper;
 pub mod plots;
+pub mod render_joints;
 pub mod report;
 pub mod sets;

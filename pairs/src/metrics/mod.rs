@@ -12,6 +12,7 @@ pub mod flow;
 pub mod joints;
 pub mod motion;
 pub mod pair;
+pub mod render_joints;
 pub mod segmentation;
 pub mod sets;
 

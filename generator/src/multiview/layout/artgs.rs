@@ -23,7 +23,7 @@ use image::ExtendedColorType;
 use pairs::math::Real;
 use serde_json::{json, Map, Value};
 
-use super::gt::{part_joints, trans_json, write_meshes, WorldFrame};
+use super::gt::{part_joints, trans_json, write_meshes};
 use super::native::depth_units;
 use super::paris::{write_rgba, STATES};
 use super::{each_view, u16_bytes, write_json, write_png};
@@ -53,7 +53,7 @@ pub fn write_object(
     }
     let folder = object_folder(&job.name);
     let dir = out.join(&folder);
-    let frame = WorldFrame::normalised(job, true);
+    let frame = super::Layout::Artgs.frame(job);
     let k = &job.cameras[0].intrinsics;
     let angle = |size: u32, f: Real| 2.0 * (0.5 * size as Real / f).atan();
     let transforms = |states: &[usize]| {

@@ -21,7 +21,7 @@ use std::path::Path;
 
 use image::ExtendedColorType;
 
-use super::gt::{part_joints, trans_json, write_meshes, WorldFrame};
+use super::gt::{part_joints, trans_json, write_meshes};
 use super::native::depth_units;
 use super::{each_view, u16_bytes, write_bytes, write_json, write_png};
 use crate::multiview::shade::rgb8;
@@ -45,7 +45,7 @@ pub fn write_object(
     let k = &job.cameras[0].intrinsics;
     let cam_k = format!("{:.9} 0.0 {:.9}\n0.0 {:.9} {:.9}\n0.0 0.0 1.0\n", k.fx, k.cx, k.fy, k.cy);
     write_bytes(&dir.join("cam_K.txt"), cam_k.as_bytes())?;
-    let frame = WorldFrame::identity();
+    let frame = super::Layout::Dta.frame(job);
     let mut yml = String::new();
     for time in 0..2 {
         for (i, camera) in job.cameras.iter().enumerate() {

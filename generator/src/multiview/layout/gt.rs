@@ -8,6 +8,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use pairs::math::{Isometry3, Matrix3, Point3, Real, Rotation3, UnitQuaternion, Vector3};
+use pairs::renders::{ObjectTruth, RenderJoint, TrueJoint};
 use pairs::{JointKind, PartId};
 use serde::Serialize;
 use serde_json::{json, Value};
@@ -73,6 +74,54 @@ impl WorldFrame {
             3 => [0.0, 0.0, 0.0, 1.0],
             _ => [r[(i, 0)], r[(i, 1)], r[(i, 2)], t[i]].map(f64::from),
         })
+    }
+}
+
+/// The record of a frame (`ground_truth.json`).
+impl WorldFrame {
+    /// As `pairs` writes it.
+    pub fn record(&self) -> pairs::renders::WorldFrame {
+        pairs::renders::WorldFrame {
+            scale: f64::from(self.scale),
+            centre: self.centre.map(f64::from),
+            z_up: self.z_up,
+        }
+    }
+}
+
+/// The ground truth of one object in a layout's world: its moving joints (axis in the
+/// start state, change from start to end in radians or world units).
+pub fn object_truth(job: &RenderJob, frame: &WorldFrame, folder: &str) -> ObjectTruth {
+    let (lo, hi) = bounds(&job.scenes);
+    let joints = part_joints(job)
+        .iter()
+        .map(|j| {
+            let axis = frame.direction(&Vector3::from(j.axis[0]));
+            let pivot = frame.point(&Point3::from(j.pivot[0]));
+            let change = j.value[1] - j.value[0];
+            let state = match j.kind {
+                JointKind::Revolute => change,
+                JointKind::Prismatic => change * frame.scale,
+            };
+            TrueJoint {
+                name: j.name.clone(),
+                part: j.part,
+                joint: RenderJoint {
+                    kind: j.kind,
+                    axis: [axis.x, axis.y, axis.z].map(f64::from),
+                    pivot: [pivot.x, pivot.y, pivot.z].map(f64::from),
+                    state: f64::from(state),
+                },
+            }
+        })
+        .collect();
+    ObjectTruth {
+        folder: folder.into(),
+        object_id: job.object.object_id,
+        category: job.object.object.category.clone(),
+        world: frame.record(),
+        diagonal: f64::from((hi - lo).norm() * frame.scale),
+        joints,
     }
 }
 

@@ -61,6 +61,16 @@ impl Layout {
         }
     }
 
+    /// The world a layout writes in: our object frame for `native` and `dta` (which
+    /// normalises the scene itself), PARIS's Z-up frame with the object centred and its
+    /// largest half extent 1 for `paris` and `artgs`.
+    pub fn frame(self, job: &RenderJob) -> gt::WorldFrame {
+        match self {
+            Self::Native | Self::Dta => gt::WorldFrame::identity(),
+            Self::Paris | Self::Artgs => gt::WorldFrame::normalised(job, true),
+        }
+    }
+
     /// The intrinsics of a layout's cameras from a config: DigitalTwinArt puts the
     /// principal point at `(W/2, H/2)` with pixel centres at integer coordinates
     /// (`nerf_utils.py:20,28`); the others at the image's centre, pixel centres at half
@@ -125,6 +135,7 @@ pub fn write_render(
     let tick = || progress(done.fetch_add(1, Ordering::Relaxed) + 1);
     let mut objects = Vec::new();
     let mut parts = Vec::new();
+    let mut truths = Vec::new();
     for job in jobs {
         let job = job?;
         parts.push(job.parts);
@@ -134,6 +145,7 @@ pub fn write_render(
             Layout::Dta => dta::write_object(config, &job, staging.path(), &tick)?,
             Layout::Artgs => artgs::write_object(config, &job, staging.path(), &tick)?,
         };
+        truths.push(gt::object_truth(&job, &layout.frame(&job), &folder));
         objects.push(folder);
     }
     let record = RenderRecord {
@@ -144,7 +156,10 @@ pub fn write_render(
         config,
         objects: &objects,
     };
-    write_json(&staging.path().join("render.json"), &record)?;
+    write_json(&staging.path().join(pairs::renders::RENDER_FILE), &record)?;
+    let truth =
+        pairs::renders::RenderTruth { layout: layout.as_str().into(), seed, objects: truths };
+    write_json(&staging.path().join(pairs::renders::GROUND_TRUTH_FILE), &truth)?;
     if layout == Layout::Artgs {
         artgs::write_registry(staging.path(), &objects, &parts)?;
     }

@@ -76,7 +76,7 @@ pub fn write_object(
             ));
         }
     }
-    let frame = WorldFrame::normalised(job, true);
+    let frame = super::Layout::Paris.frame(job);
     let source =
         format!("sapien/{}/{}", crate::objects::identifier(&job.object.object.category), job.name);
     let load = out.join("load").join(&source);
