@@ -44,6 +44,7 @@ fn round_trip(config: &GeneratorConfig, index: u32) -> (ArticulatedObject, Artic
         object_id: index,
         object: object.clone(),
         source: Source::BuiltIn { split: "test".into() },
+        surfaces: Vec::new(),
     };
     let written = write_object(config, &item, dir.path()).expect("exported");
     let urdf = dir.path().join(&written.folder).join("mobility.urdf");
@@ -143,7 +144,12 @@ fn link_and_joint_names_follow_the_layout() {
     assert_eq!(unique.len(), names.len(), "joint names are unique: {names:?}");
     assert_eq!(link_name(10), "link_10");
     let dir = tempfile::tempdir().expect("temp dir");
-    let item = ObjectToExport { object_id: 7, object, source: Source::Asset { path: "x".into() } };
+    let item = ObjectToExport {
+        object_id: 7,
+        object,
+        source: Source::Asset { path: "x".into() },
+        surfaces: Vec::new(),
+    };
     let written = write_object(&config, &item, dir.path()).expect("exported");
     assert_eq!(written.folder, "000007_folding_table");
     let folder = dir.path().join(&written.folder);
@@ -166,6 +172,7 @@ fn a_non_empty_output_folder_is_refused_and_left_as_it_was() {
             object_id: i,
             object: build_object(&config, i).expect("object"),
             source: Source::BuiltIn { split: "test".into() },
+            surfaces: Vec::new(),
         })
         .collect();
     let dir = tempfile::tempdir().expect("temp dir");
@@ -212,6 +219,7 @@ fn exported_user_assets_read_back_into_the_same_pairs() {
             object_id: 0,
             object: original.clone(),
             source: Source::Asset { path: asset.into() },
+            surfaces: Vec::new(),
         };
         let written = write_object(&config, &item, dir.path()).expect("exported");
         let urdf = dir.path().join(&written.folder).join("mobility.urdf");

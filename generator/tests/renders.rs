@@ -478,7 +478,114 @@ fn a_camera_file_is_used_as_given_and_bad_settings_are_refused() {
         object_id: 7,
         object: object.object,
         source: Source::BuiltIn { split: "test".into() },
+        surfaces: Vec::new(),
     };
     let job = RenderJob::new(&config, 0, built, None, Layout::Paris).expect("job");
     assert_eq!(job.parts, 2, "PARIS renders move one part");
+}
+
+/// An OBJ box from `lo` to `hi` (group `name`, material `material`, every corner at
+/// texture coordinates `uv`), its vertices numbered from `first`.
+fn obj_box(
+    name: &str,
+    material: &str,
+    lo: [f32; 3],
+    hi: [f32; 3],
+    first: usize,
+    uv: [f32; 2],
+) -> String {
+    let mut s = format!("g {name}\nusemtl {material}\nvt {} {}\n", uv[0], uv[1]);
+    for i in 0..8 {
+        let p = [
+            if i & 1 == 0 { lo[0] } else { hi[0] },
+            if i & 2 == 0 { lo[1] } else { hi[1] },
+            if i & 4 == 0 { lo[2] } else { hi[2] },
+        ];
+        s += &format!("v {} {} {}\n", p[0], p[1], p[2]);
+    }
+    // Faces counter-clockwise from outside: -x, +x, -y, +y, -z, +z.
+    let quads =
+        [[0, 4, 6, 2], [1, 3, 7, 5], [0, 1, 5, 4], [2, 6, 7, 3], [0, 2, 3, 1], [4, 5, 7, 6]];
+    let t = first / 8 + 1;
+    for q in quads {
+        let v: Vec<usize> = q.iter().map(|i| first + i + 1).collect();
+        s += &format!(
+            "f {}/{t} {}/{t} {}/{t}\nf {}/{t} {}/{t} {}/{t}\n",
+            v[0], v[1], v[2], v[0], v[2], v[3]
+        );
+    }
+    s
+}
+
+#[test]
+fn an_asset_renders_with_its_own_materials_and_textures() {
+    let dir = tempfile::tempdir().expect("tmp");
+    let root = dir.path();
+    // A red body (MTL Kd) and a lid textured by a 2 x 2 image whose top-left texel is blue.
+    let mut texture = image::RgbImage::new(2, 2);
+    for (x, y, p) in texture.enumerate_pixels_mut() {
+        *p = if (x + y) % 2 == 0 { image::Rgb([20, 30, 230]) } else { image::Rgb([20, 230, 30]) };
+    }
+    texture.save(root.join("checker.png")).expect("png");
+    std::fs::write(
+        root.join("box.mtl"),
+        "newmtl red\nKd 0.9 0.1 0.1\nnewmtl checker\nKd 1 1 1\nmap_Kd checker.png\n",
+    )
+    .expect("mtl");
+    let obj = format!(
+        "mtllib box.mtl\n{}{}",
+        obj_box("body", "red", [-0.5, 0.0, -0.3], [0.5, 0.4, 0.3], 0, [0.0, 0.0]),
+        obj_box("lid", "checker", [-0.5, 0.4, -0.3], [0.5, 0.45, 0.3], 8, [0.25, 0.75])
+    );
+    std::fs::write(root.join("box.obj"), obj).expect("obj");
+    let joints = r#"{"category": "box", "joints": [{"name": "hinge", "type": "revolute", "parent": "body", "child": "lid", "origin": [0.0, 0.4, -0.3], "axis": [1.0, 0.0, 0.0], "lower": 0.0, "upper": 1.2}]}"#;
+    std::fs::write(root.join("box.joints.json"), joints).expect("sidecar");
+    let imported = generator::import::load_asset(
+        &root.join("box.obj"),
+        &generator::import::ImportOptions::default(),
+    )
+    .expect("asset");
+    assert!(imported.surfaces.iter().all(|s| s.is_styled()));
+    let object = ObjectToExport {
+        object_id: 0,
+        object: imported.object,
+        source: Source::Asset { path: "box.obj".into() },
+        surfaces: imported.surfaces,
+    };
+    let config = RenderConfig {
+        width: 120,
+        height: 90,
+        views: 6,
+        placement: generator::multiview::cameras::Placement::Hemisphere,
+        ..RenderConfig::default()
+    };
+    let job = RenderJob::new(&config, 0, object, None, Layout::Native).expect("job");
+    assert_eq!(
+        job.appearance.asset_materials,
+        vec![vec!["red".to_string()], vec!["checker".to_string()]]
+    );
+    let (mut body, mut lid) = (0, 0);
+    for view in 0..6 {
+        let images = job.view(&config, 0, view);
+        for (rgb, part) in images.rgb.iter().zip(&images.part) {
+            match part {
+                Some(0) => {
+                    assert!(
+                        rgb[0] > 3.0 * rgb[1] && rgb[0] > 3.0 * rgb[2],
+                        "the body is red: {rgb:?}"
+                    );
+                    body += 1;
+                }
+                Some(_) => {
+                    assert!(
+                        rgb[2] > 3.0 * rgb[0] && rgb[2] > 3.0 * rgb[1],
+                        "the lid is the blue texel: {rgb:?}"
+                    );
+                    lid += 1;
+                }
+                None => {}
+            }
+        }
+    }
+    assert!(body > 500 && lid > 200, "{body} body and {lid} lid pixels");
 }

@@ -67,6 +67,9 @@ pub struct ObjectToExport {
     pub object: ArticulatedObject,
     /// Where it came from.
     pub source: Source,
+    /// Each link's materials and textures from the asset (`generator render`); empty for
+    /// the built-in objects, which get a procedural material.
+    pub surfaces: Vec<crate::import::surface::Surface>,
 }
 
 /// One exported object.
@@ -124,6 +127,7 @@ pub fn built_in_objects(
                 object_id: i,
                 object,
                 source: Source::BuiltIn { split: config.split.as_str().into() },
+                surfaces: Vec::new(),
             })
         })
         .collect()

@@ -9,6 +9,7 @@ use pairs::math::{Point3, Real};
 use pairs::JointKind;
 
 use super::skeleton::{RawJoint, RawKind, Skeleton};
+use super::surface::Surface;
 use super::ImportError;
 use crate::mesh::Mesh;
 use crate::objects::{ArticulatedObject, Joint, Link, Mimic};
@@ -19,6 +20,15 @@ pub fn assemble(
     skeleton: Skeleton,
     continuous: (f64, f64),
 ) -> Result<ArticulatedObject, ImportError> {
+    assemble_with_surfaces(skeleton, continuous).map(|(object, _)| object)
+}
+
+/// [`assemble`], also returning each object link's surface (its links' surfaces appended
+/// in the order their meshes are).
+pub fn assemble_with_surfaces(
+    skeleton: Skeleton,
+    continuous: (f64, f64),
+) -> Result<(ArticulatedObject, Vec<Surface>), ImportError> {
     let tree = skeleton.tree()?;
     let Skeleton { category, links, joints } = skeleton;
     // Each link's part: the nearest ancestor (or itself) not attached by a fixed joint.
@@ -42,6 +52,7 @@ pub fn assemble(
     // appended in that order.
     let mut parts: Vec<usize> = Vec::new(); // each part's first link, depth first
     let mut meshes: HashMap<usize, Mesh> = HashMap::new();
+    let mut surfaces: HashMap<usize, Surface> = HashMap::new();
     let mut stack = vec![tree.root];
     while let Some(link) = stack.pop() {
         let part = part_of(link);
@@ -49,6 +60,7 @@ pub fn assemble(
             parts.push(link);
         }
         meshes.entry(part).or_default().append(links[link].mesh.clone());
+        surfaces.entry(part).or_default().append(links[link].surface.clone());
         stack.extend(children_of(link).into_iter().rev().map(|j| tree.ends[j].1));
     }
     // Parts in order: parents before children, otherwise by name in natural order
@@ -72,7 +84,9 @@ pub fn assemble(
     let moving: Vec<usize> = order.iter().filter_map(|&l| tree.parent_joint[l]).collect();
     let position: HashMap<usize, usize> = order.iter().enumerate().map(|(i, &l)| (l, i)).collect();
     let mut object_links = Vec::with_capacity(order.len());
+    let mut object_surfaces = Vec::with_capacity(order.len());
     for &l in &order {
+        object_surfaces.push(surfaces.remove(&l).unwrap_or_default());
         let mesh = meshes.remove(&l).unwrap_or_default();
         if mesh.triangles.is_empty() {
             return Err(ImportError::EmptyMesh { link: links[l].name.clone() });
@@ -90,7 +104,7 @@ pub fn assemble(
     let mimics = resolve_mimics(&joints, &moving, &joint_index, &mut object_joints)?;
     let object = ArticulatedObject { category, links: object_links, joints: object_joints, mimics };
     object.validate()?;
-    Ok(object)
+    Ok((object, object_surfaces))
 }
 
 /// A moving joint of the model from an asset joint.

@@ -71,7 +71,8 @@ pub fn gltf_skeleton(
     let all: Vec<::gltf::Node> = document.nodes().collect();
     for placed in &nodes {
         let node = all.get(placed.index).ok_or_else(|| cycle(placed))?;
-        links.push(RawLink { name: placed.name.clone(), mesh: node_mesh(node, placed, &buffers)? });
+        let mesh = node_mesh(node, placed, &buffers)?;
+        links.push(RawLink { name: placed.name.clone(), mesh, surface: Default::default() });
         if sidecar.is_none() {
             if let Some(extras) = node.extras() {
                 let extras: NodeExtras = serde_json::from_str(extras.get()).map_err(|e| {

@@ -2,10 +2,11 @@
 
 use std::path::{Path, PathBuf};
 
-use super::assembly::assemble;
+use super::assembly::assemble_with_surfaces;
 use super::discover::extension;
 use super::gltf::read_gltf_asset;
 use super::obj_groups::read_obj_asset;
+use super::surface::Surface;
 use super::urdf::read_urdf_asset;
 use super::{ImportError, ImportOptions};
 use crate::objects::ArticulatedObject;
@@ -17,6 +18,8 @@ pub struct Imported {
     pub object: ArticulatedObject,
     /// Files read besides the asset's own (sidecar, meshes, buffers), in reading order.
     pub files: Vec<PathBuf>,
+    /// Each link's surface (materials and textures, for renders), in link order.
+    pub surfaces: Vec<Surface>,
 }
 
 /// Reads the asset at `path` by its extension: `.urdf`, `.obj` (with its sidecar),
@@ -29,5 +32,6 @@ pub fn load_asset(path: &Path, options: &ImportOptions) -> Result<Imported, Impo
         "gltf" | "glb" => read_gltf_asset(path)?,
         _ => return Err(ImportError::UnknownFormat { path: path.into() }),
     };
-    Ok(Imported { object: assemble(skeleton, continuous)?, files })
+    let (object, surfaces) = assemble_with_surfaces(skeleton, continuous)?;
+    Ok(Imported { object, files, surfaces })
 }

@@ -6,6 +6,7 @@ use std::path::Path;
 use pairs::math::Point3;
 
 use super::mesh_build::build_mesh;
+use super::surface::{self, Surface};
 use super::{text, ImportError};
 use crate::mesh::Mesh;
 
@@ -18,11 +19,15 @@ pub struct ObjGroup {
     pub positions: Vec<Point3>,
     /// Triangles, indices into `positions`.
     pub triangles: Vec<[u32; 3]>,
+    /// The triangles' corners, texture coordinates and materials (`mtllib`), for renders.
+    pub surface: Surface,
 }
 
 /// The groups of an OBJ text that have faces, in order of first appearance; a group that
 /// appears twice (split by `usemtl` or repeated `g` lines) is one group. Polygons are fanned
-/// into triangles; points and lines are ignored; `mtllib` is not read.
+/// into triangles; points and lines are ignored. `mtllib` files (beside `path`) and their
+/// `map_Kd` textures are read for the groups' surfaces; one that cannot be read is logged
+/// and left out.
 pub fn parse_obj(path: &Path, text: &str) -> Result<Vec<ObjGroup>, ImportError> {
     let options = tobj::LoadOptions {
         single_index: true,
@@ -30,14 +35,23 @@ pub fn parse_obj(path: &Path, text: &str) -> Result<Vec<ObjGroup>, ImportError> 
         ignore_points: true,
         ignore_lines: true,
     };
-    let (models, _materials) = tobj::load_obj_buf(&mut Cursor::new(text), &options, |_| {
-        Ok((Vec::new(), Default::default()))
+    let warned = std::cell::RefCell::new(Vec::new());
+    let (models, materials) = tobj::load_obj_buf(&mut Cursor::new(text), &options, |mtl| {
+        surface::load_mtl(path, mtl, &mut |w| warned.borrow_mut().push(w))
     })
     .map_err(|e| ImportError::Parse {
         path: path.into(),
         format: "OBJ",
         reason: e.to_string(),
     })?;
+    let mut warnings = warned.into_inner();
+    let materials = match materials {
+        Ok(m) => surface::materials(path, &m, &mut |w| warnings.push(w)),
+        Err(_) => Vec::new(),
+    };
+    for w in warnings {
+        tracing::warn!("{}: materials: {w}", path.display());
+    }
     let mut groups: Vec<ObjGroup> = Vec::new();
     for model in models {
         let mesh = model.mesh;
@@ -51,15 +65,27 @@ pub fn parse_obj(path: &Path, text: &str) -> Result<Vec<ObjGroup>, ImportError> 
                     name: model.name,
                     positions: Vec::new(),
                     triangles: Vec::new(),
+                    surface: Surface::default(),
                 });
                 groups.len() - 1
             }
         };
         let group = &mut groups[index];
         let offset = group.positions.len() as u32;
-        group
-            .positions
-            .extend(mesh.positions.chunks_exact(3).map(|c| Point3::new(c[0], c[1], c[2])));
+        let positions: Vec<Point3> =
+            mesh.positions.chunks_exact(3).map(|c| Point3::new(c[0], c[1], c[2])).collect();
+        let material = mesh.material_id.and_then(|m| materials.get(m).cloned());
+        for t in mesh.indices.chunks_exact(3) {
+            let Some(corners) =
+                t.iter().map(|&i| positions.get(i as usize).copied()).collect::<Option<Vec<_>>>()
+            else {
+                continue;
+            };
+            group.surface.corners.push([corners[0], corners[1], corners[2]]);
+            group.surface.uv.push(surface::corner_uv(&mesh.texcoords, t));
+            group.surface.material.push(material.clone());
+        }
+        group.positions.extend(positions);
         group.triangles.extend(
             mesh.indices.chunks_exact(3).map(|t| [t[0] + offset, t[1] + offset, t[2] + offset]),
         );
@@ -67,41 +93,48 @@ pub fn parse_obj(path: &Path, text: &str) -> Result<Vec<ObjGroup>, ImportError> 
     Ok(groups)
 }
 
-/// The mesh of a mesh file referenced by `link` (OBJ, every group merged, or STL). Any
-/// other format, and any unreadable file, is an error naming the link and the file.
-pub fn read_mesh_file(link: &str, path: &Path) -> Result<Mesh, ImportError> {
+/// The mesh of a mesh file referenced by `link` (OBJ, every group merged, or STL) and its
+/// surface (materials from an OBJ's `mtllib`; none for STL). Any other format, and any
+/// unreadable file, is an error naming the link and the file.
+pub fn read_mesh_file(link: &str, path: &Path) -> Result<(Mesh, Surface), ImportError> {
     let fail =
         |reason: String| ImportError::MeshFile { link: link.into(), file: path.into(), reason };
     let extension = path.extension().and_then(|e| e.to_str()).unwrap_or("").to_ascii_lowercase();
     let bytes = std::fs::read(path).map_err(|e| fail(e.to_string()))?;
-    let (positions, triangles) = match extension.as_str() {
+    let (positions, triangles, surface) = match extension.as_str() {
         "obj" => {
             let text = text::utf8(path, bytes).map_err(|e| fail(e.to_string()))?;
             let groups = parse_obj(path, &text).map_err(|e| fail(e.to_string()))?;
             merge_groups(groups)
         }
-        "stl" => read_stl(&bytes).map_err(fail)?,
+        "stl" => {
+            let (positions, triangles) = read_stl(&bytes).map_err(fail)?;
+            let surface = Surface::plain(&positions, &triangles);
+            (positions, triangles, surface)
+        }
         other => {
             return Err(fail(format!(
                 "format {other:?} is not supported; convert the mesh to OBJ or STL"
             )))
         }
     };
-    build_mesh(link, &positions, &triangles).map_err(|e| match e {
+    let mesh = build_mesh(link, &positions, &triangles).map_err(|e| match e {
         ImportError::EmptyMesh { .. } => fail("the file has no triangles".into()),
         other => other,
-    })
+    })?;
+    Ok((mesh, surface))
 }
 
-/// All groups of an OBJ as one triangle soup.
-fn merge_groups(groups: Vec<ObjGroup>) -> (Vec<Point3>, Vec<[u32; 3]>) {
-    let (mut positions, mut triangles) = (Vec::new(), Vec::new());
+/// All groups of an OBJ as one triangle soup, and their surfaces as one.
+fn merge_groups(groups: Vec<ObjGroup>) -> (Vec<Point3>, Vec<[u32; 3]>, Surface) {
+    let (mut positions, mut triangles, mut surface) = (Vec::new(), Vec::new(), Surface::default());
     for g in groups {
         let offset = positions.len() as u32;
         positions.extend(g.positions);
         triangles.extend(g.triangles.into_iter().map(|t| t.map(|i| i + offset)));
+        surface.append(g.surface);
     }
-    (positions, triangles)
+    (positions, triangles, surface)
 }
 
 /// An STL file (ASCII or binary) as positions and triangles.

@@ -22,6 +22,7 @@ pub mod obj_groups;
 pub mod options;
 pub mod sidecar;
 pub mod skeleton;
+pub mod surface;
 pub mod text;
 pub mod urdf;
 

@@ -30,7 +30,7 @@ pub fn obj_skeleton(path: &Path, text: &str, spec: &Sidecar) -> Result<Skeleton,
         .into_iter()
         .map(|g| {
             let mesh = build_mesh(&g.name, &g.positions, &g.triangles)?;
-            Ok(RawLink { name: g.name, mesh })
+            Ok(RawLink { name: g.name, mesh, surface: g.surface })
         })
         .collect::<Result<_, ImportError>>()?;
     let joints = spec.joints.iter().map(|j| j.to_raw(None, None)).collect::<Result<_, _>>()?;

@@ -4,6 +4,7 @@
 
 use std::collections::HashMap;
 
+use super::surface::Surface;
 use super::ImportError;
 use crate::mesh::Mesh;
 
@@ -14,6 +15,8 @@ pub struct RawLink {
     pub name: String,
     /// Surface in the rest frame; may be empty for a link welded to a non-empty one.
     pub mesh: Mesh,
+    /// Its triangles' materials, same frame (for renders; may be empty).
+    pub surface: Surface,
 }
 
 /// Joint types of the asset formats.

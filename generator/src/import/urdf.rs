@@ -7,12 +7,14 @@
 //! the joint frame's origin, moved into the rest frame, give the model's axis and pivot.
 
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 
 use nalgebra::{Isometry3, Point3 as P3, Translation3, UnitQuaternion, Vector3 as V3};
 use pairs::math::{Point3, Real};
 
 use super::mesh_files::read_mesh_file;
 use super::skeleton::{RawJoint, RawKind, RawLink, RawMimic, Skeleton};
+use super::surface::{Surface, SurfaceMaterial};
 use super::{text, ImportError, ImportOptions};
 use crate::mesh::Mesh;
 
@@ -77,6 +79,7 @@ pub fn urdf_skeleton(
     for (l, link) in robot.links.iter().enumerate() {
         let frame = frames[l].unwrap_or_else(Isometry3::identity);
         let mut mesh = Mesh::default();
+        let mut surface = Surface::default();
         for visual in &link.visual {
             let origin = &visual.origin;
             if !finite(&origin.xyz.0) || !finite(&origin.rpy.0) {
@@ -86,9 +89,14 @@ pub fn urdf_skeleton(
                 });
             }
             let place = frame * pose(&origin.xyz.0, &origin.rpy.0);
-            mesh.append(geometry(&link.name, &visual.geometry, &place, search, &mut files)?);
+            let (m, mut s) = geometry(&link.name, &visual.geometry, &place, search, &mut files)?;
+            if let Some(colour) = visual_colour(visual.material.as_ref(), &robot.materials) {
+                s = s.with_default(&colour);
+            }
+            mesh.append(m);
+            surface.append(s);
         }
-        links.push(RawLink { name: link.name.clone(), mesh });
+        links.push(RawLink { name: link.name.clone(), mesh, surface });
     }
     let mut joints = Vec::with_capacity(robot.joints.len());
     for (j, joint) in robot.joints.iter().enumerate() {
@@ -181,13 +189,37 @@ fn finite(v: &[f64]) -> bool {
 }
 
 /// One visual's geometry placed by `place` in the rest frame.
+/// The colour of a visual's `<material>`: its own `<color rgba>`, or that of the robot's
+/// material of the same name.
+fn visual_colour(
+    material: Option<&urdf_rs::Material>,
+    robot: &[urdf_rs::Material],
+) -> Option<Arc<SurfaceMaterial>> {
+    let material = material?;
+    let color = material
+        .color
+        .as_ref()
+        .or_else(|| robot.iter().find(|m| m.name == material.name)?.color.as_ref())?;
+    let rgba = color.rgba.0;
+    if !finite(&rgba) {
+        return None;
+    }
+    Some(Arc::new(SurfaceMaterial {
+        name: material.name.clone(),
+        colour: [rgba[0], rgba[1], rgba[2]].map(|c| c.clamp(0.0, 1.0) as f32),
+        texture: None,
+    }))
+}
+
+/// A visual's geometry placed by `place` (mesh file, box, cylinder, capsule or sphere),
+/// with its surface.
 fn geometry(
     link: &str,
     geometry: &urdf_rs::Geometry,
     place: &Isometry3<f64>,
     search: &MeshSearch,
     files: &mut Vec<PathBuf>,
-) -> Result<Mesh, ImportError> {
+) -> Result<(Mesh, Surface), ImportError> {
     use urdf_rs::Geometry as G;
     let positive = |values: &[f64]| {
         if values.iter().all(|v| v.is_finite() && *v > 0.0) {
@@ -196,10 +228,12 @@ fn geometry(
             Err(ImportError::EmptyMesh { link: link.into() })
         }
     };
+    let mut file_surface = None;
     let (local, scale) = match geometry {
         G::Mesh { filename, scale } => {
             let file = resolve(link, filename, search)?;
-            let mesh = read_mesh_file(link, &file)?;
+            let (mesh, surface) = read_mesh_file(link, &file)?;
+            file_surface = Some(surface);
             files.push(file);
             let scale = scale.map_or([1.0; 3], |s| s.0);
             if !finite(&scale) {
@@ -234,20 +268,25 @@ fn geometry(
             (Mesh::sphere(Point3::origin(), *radius as Real, SEGMENTS), [1.0; 3])
         }
     };
+    let surface = file_surface.unwrap_or_else(|| Surface::plain(&local.vertices, &local.triangles));
     let mut mesh = local;
-    for v in &mut mesh.vertices {
+    let transform = |v: &Point3| {
         let scaled = P3::new(
             f64::from(v.x) * scale[0],
             f64::from(v.y) * scale[1],
             f64::from(v.z) * scale[2],
         );
-        *v = (place * scaled).cast::<Real>();
+        (place * scaled).cast::<Real>()
+    };
+    for v in &mut mesh.vertices {
+        *v = transform(v);
     }
-    if scale.iter().product::<f64>() < 0.0 {
+    let mirror = scale.iter().product::<f64>() < 0.0;
+    if mirror {
         // A mirroring scale turns the triangles inside out.
         mesh.triangles.iter_mut().for_each(|t| t.swap(1, 2));
     }
-    Ok(mesh)
+    Ok((mesh, surface.map(transform, mirror)))
 }
 
 /// The file a mesh reference names: `package://name/rest`, `file://path`, an absolute

@@ -1,7 +1,8 @@
-//! What a rendered surface looks like, independent of its part: a material per link (one
-//! per object for the built-in objects), each a colour pair blended by a solid procedural
-//! texture evaluated at the link's rest-frame position (so the texture moves with the part
-//! and repeats between states and views), lit by a fixed set of directional lights.
+//! What a rendered surface looks like, independent of its part: an asset's own materials
+//! (OBJ/MTL colours and `map_Kd` textures, URDF colours; `crate::import::surface`) where it
+//! has them, and otherwise one procedural material per object: a colour pair blended by a
+//! solid texture evaluated at the link's rest-frame position (so the texture moves with the
+//! part and repeats between states and views). Lit by a fixed set of directional lights.
 //!
 //! Light model: Lambertian, two-sided, no shadows, no specular term. The radiance of a
 //! surface point with albedo `a` and unit normal `n` (turned towards the camera) is
@@ -13,6 +14,10 @@ use pairs::math::{Point3, Real, Vector3};
 use rand::Rng as _;
 use serde::{Deserialize, Serialize};
 
+use parry3d::query::PointQueryWithLocation;
+use parry3d::shape::TriMesh;
+
+use crate::import::surface::Surface;
 use crate::seed::Rng;
 
 /// One surface material: colour `base` where the texture is low, `vein` where it is high.
@@ -68,23 +73,76 @@ impl Material {
     }
 }
 
-/// The materials of an object's links.
-#[derive(Debug, Clone, PartialEq, Serialize)]
+/// The materials of an object's links: a procedural material per link, and where an asset
+/// gives its own (OBJ/MTL colours and textures, URDF colours), the asset's.
+#[derive(Debug, Clone, Serialize)]
 pub struct Appearance {
-    /// The materials.
+    /// The procedural materials.
     pub materials: Vec<Material>,
-    /// Material of each link, an index into `materials`.
+    /// Procedural material of each link, an index into `materials`.
     pub material_of_link: Vec<usize>,
+    /// The asset's own materials of each link (names, for the record), where it has any.
+    pub asset_materials: Vec<Vec<String>>,
+    /// Per link, the asset's styled triangles (`None` where it has none).
+    #[serde(skip)]
+    surfaces: Vec<Option<StyledLink>>,
+}
+
+/// One link's styled triangles, ready for point queries.
+#[derive(Debug, Clone)]
+struct StyledLink {
+    soup: TriMesh,
+    surface: Surface,
 }
 
 impl Appearance {
     /// One material for every link.
     pub fn single(material: Material, links: usize) -> Self {
-        Self { materials: vec![material], material_of_link: vec![0; links] }
+        Self {
+            materials: vec![material],
+            material_of_link: vec![0; links],
+            asset_materials: vec![Vec::new(); links],
+            surfaces: vec![None; links],
+        }
     }
 
-    /// Albedo of `link` at a rest-frame point.
+    /// Adds an asset's surfaces (one per link, rest frame): a link with any material is
+    /// shaded by them, its other triangles by its procedural material.
+    pub fn with_surfaces(mut self, surfaces: &[Surface]) -> Self {
+        for (link, surface) in surfaces.iter().enumerate().take(self.surfaces.len()) {
+            if !surface.is_styled() {
+                continue;
+            }
+            let vertices: Vec<Point3> = surface.corners.iter().flatten().copied().collect();
+            let triangles: Vec<[u32; 3]> =
+                (0..surface.corners.len() as u32).map(|t| [3 * t, 3 * t + 1, 3 * t + 2]).collect();
+            let Ok(soup) = TriMesh::new(vertices, triangles) else { continue };
+            let mut names: Vec<String> =
+                surface.material.iter().flatten().map(|m| m.name.clone()).collect();
+            names.sort();
+            names.dedup();
+            self.asset_materials[link] = names;
+            self.surfaces[link] = Some(StyledLink { soup, surface: surface.clone() });
+        }
+        self
+    }
+
+    /// Albedo of `link` at a rest-frame point: the asset's material of the nearest styled
+    /// triangle (its texture sampled at the point's texture coordinates), else the link's
+    /// procedural material.
     pub fn albedo(&self, link: usize, rest: &Point3) -> [Real; 3] {
+        if let Some(styled) = &self.surfaces[link] {
+            let (_, (triangle, location)) =
+                styled.soup.project_local_point_and_get_location(rest, false);
+            let t = triangle as usize;
+            if let Some(material) = &styled.surface.material[t] {
+                let uv = styled.surface.uv[t].map(|uv| {
+                    let w = location.barycentric_coordinates().unwrap_or([1.0 / 3.0; 3]);
+                    std::array::from_fn(|c| w[0] * uv[0][c] + w[1] * uv[1][c] + w[2] * uv[2][c])
+                });
+                return material.albedo(uv);
+            }
+        }
         self.materials[self.material_of_link[link]].albedo(rest)
     }
 }

@@ -273,7 +273,8 @@ impl RenderJob {
         let (part_of_link, parts) = parts_over_states(&object.object, &states);
         let diagonal = scenes[0].diagonal();
         let material = Material::draw(&mut rng_for(seed, id, Stream::Appearance), diagonal);
-        let appearance = Appearance::single(material, object.object.links.len());
+        let appearance =
+            Appearance::single(material, object.object.links.len()).with_surfaces(&object.surfaces);
         Ok(Self {
             object,
             name,

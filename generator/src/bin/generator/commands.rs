@@ -59,6 +59,7 @@ pub(crate) fn selected_objects(
                         object_id: i as u32,
                         object: imported.object,
                         source: Source::Asset { path },
+                        surfaces: imported.surfaces,
                     }),
                     Err(e) => {
                         failed += 1;
