@@ -69,7 +69,8 @@ def main(root):
     print(f"open3d  rays {rays_total} hits {hits} seconds {seconds:.3f} rays_per_second {rays_total / seconds:.0f}")
     ours = subprocess.run([str(ROOT / "target" / "release" / "examples" / "raycast_rate"), str(root)],
                           check=True, capture_output=True, text=True).stdout.strip()
-    print("ours   ", ours)
+    for line in ours.splitlines():
+        print("ours   ", line)
 
 
 if __name__ == "__main__":

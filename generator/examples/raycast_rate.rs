@@ -1,7 +1,8 @@
-//! Rays per second of the renderer's ray caster (parry3d's BVH through `PosedScene`) on the
-//! meshes and cameras of a `generator render --layout dta` folder: one ray per pixel of
-//! every camera, every state mesh, the whole image. `generator/benches/open3d_raycast.py`
-//! runs Open3D's `RaycastingScene` on the same rays and this beside it.
+//! Rays per second of the renderer's ray caster (`RenderScene`, obvhs) and the scanner's
+//! (`PosedScene`, parry3d) on the meshes and cameras of a `generator render --layout dta`
+//! folder: one ray per pixel of every camera, every state mesh, the whole image.
+//! `generator/benches/open3d_raycast.py` runs Open3D's `RaycastingScene` on the same rays
+//! and this beside it.
 //!
 //!     cargo run --release -p generator --example raycast_rate -- renders/dta
 
@@ -9,6 +10,7 @@ use std::path::Path;
 use std::time::Instant;
 
 use generator::mesh::Mesh;
+use generator::multiview::scene::RenderScene;
 use generator::objects::{ArticulatedObject, Link};
 use generator::scan::scene::PosedScene;
 use pairs::math::{Isometry3, Matrix3, Point3, Real, Vector3};
@@ -18,10 +20,32 @@ fn main() -> anyhow::Result<()> {
     let root = std::env::args()
         .nth(1)
         .ok_or_else(|| anyhow::anyhow!("usage: raycast_rate <dta render folder>"))?;
+    for caster in ["renderer", "scanner"] {
+        rate(&root, caster)?;
+    }
+    Ok(())
+}
+
+/// Either scene, cast the same way.
+enum Scene {
+    Renderer(RenderScene),
+    Scanner(PosedScene),
+}
+
+impl Scene {
+    fn hits(&self, origin: &Point3, d: &Vector3) -> bool {
+        match self {
+            Scene::Renderer(s) => s.cast(origin, d, 1e3).is_some(),
+            Scene::Scanner(s) => s.cast(origin, d, 1e3).is_some(),
+        }
+    }
+}
+
+fn rate(root: &str, caster: &str) -> anyhow::Result<()> {
     let mut rays = 0u64;
     let mut hits = 0u64;
     let mut seconds = 0.0;
-    let mut folders: Vec<_> = std::fs::read_dir(&root)?
+    let mut folders: Vec<_> = std::fs::read_dir(root)?
         .filter_map(|e| e.ok())
         .map(|e| e.path())
         .filter(|p| p.join("cam_K.txt").exists())
@@ -35,7 +59,11 @@ fn main() -> anyhow::Result<()> {
         let poses = read_poses(&dir.join("init_keyframes.yml"))?;
         let size = image::image_dimensions(dir.join("mask").join(format!("{}.png", poses[0].0)))?;
         for (state, name) in ["start", "end"].iter().enumerate() {
-            let scene = read_scene(&dir.join(format!("gt/{name}/{name}_rotate.ply")))?;
+            let object = read_object(&dir.join(format!("gt/{name}/{name}_rotate.ply")))?;
+            let scene = match caster {
+                "renderer" => Scene::Renderer(RenderScene::new(&object, &[Isometry3::identity()])?),
+                _ => Scene::Scanner(PosedScene::new(&object, &[Isometry3::identity()])?),
+            };
             let cameras: Vec<&Isometry3> =
                 poses.iter().filter(|p| p.1 == state).map(|p| &p.2).collect();
             let started = Instant::now();
@@ -53,9 +81,7 @@ fn main() -> anyhow::Result<()> {
                                         -1.0,
                                     );
                                     let d = pairs::math::unit_or(&(c2w.rotation * d), Vector3::z());
-                                    scene
-                                        .cast(&Point3::from(c2w.translation.vector), &d, 1e3)
-                                        .is_some()
+                                    scene.hits(&Point3::from(c2w.translation.vector), &d)
                                 })
                                 .count() as u64
                         })
@@ -68,7 +94,7 @@ fn main() -> anyhow::Result<()> {
         }
     }
     println!(
-        "rays {rays} hits {hits} seconds {seconds:.3} rays_per_second {:.0}",
+        "{caster:<9} rays {rays} hits {hits} seconds {seconds:.3} rays_per_second {:.0}",
         rays as f64 / seconds
     );
     Ok(())
@@ -102,7 +128,7 @@ fn read_poses(path: &Path) -> anyhow::Result<Vec<(String, usize, Isometry3)>> {
 }
 
 /// One link holding an ASCII PLY's triangles, at rest.
-fn read_scene(path: &Path) -> anyhow::Result<PosedScene> {
+fn read_object(path: &Path) -> anyhow::Result<ArticulatedObject> {
     let text = std::fs::read_to_string(path)?;
     let (header, body) = text
         .split_once("end_header\n")
@@ -135,6 +161,5 @@ fn read_scene(path: &Path) -> anyhow::Result<PosedScene> {
         mesh.triangles.push([f[1], f[2], f[3]]);
     }
     mesh.pieces.push(0);
-    let object = ArticulatedObject::new("ply", Link { name: "mesh".into(), mesh });
-    Ok(PosedScene::new(&object, &[Isometry3::identity()])?)
+    Ok(ArticulatedObject::new("ply", Link { name: "mesh".into(), mesh }))
 }

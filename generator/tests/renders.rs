@@ -13,11 +13,11 @@ use generator::mesh::Mesh;
 use generator::multiview::appearance::{Appearance, Lighting, Material};
 use generator::multiview::layout::gt::entry_motion;
 use generator::multiview::layout::{write_render, Layout};
+use generator::multiview::scene::RenderScene;
 use generator::multiview::shade::{shade, Shading};
 use generator::multiview::{RenderConfig, RenderJob};
 use generator::objects::{ArticulatedObject, Joint, Link};
 use generator::scan::camera::Camera;
-use generator::scan::scene::PosedScene;
 use nalgebra::{Isometry3, Matrix3, Matrix4, Point3, Vector3};
 use pairs::math::Real;
 use pairs::Intrinsics;
@@ -128,7 +128,7 @@ fn rgb_never_depends_on_the_part_label() {
         },
     ] {
         let image = |object: &ArticulatedObject, parts: &[u8]| {
-            let scene = PosedScene::new(object, &vec![Isometry3::identity(); object.links.len()])
+            let scene = RenderScene::new(object, &vec![Isometry3::identity(); object.links.len()])
                 .expect("scene");
             let appearance = Appearance::single(material.clone(), object.links.len());
             let shading = Shading {
@@ -147,7 +147,7 @@ fn rgb_never_depends_on_the_part_label() {
         assert_ne!(a.part, b.part, "the labels do");
     }
     // Under a uniform material, two faces of two parts facing the same way have one colour.
-    let scene = PosedScene::new(&two, &[Isometry3::identity(); 2]).expect("scene");
+    let scene = RenderScene::new(&two, &[Isometry3::identity(); 2]).expect("scene");
     let appearance = Appearance::single(Material::uniform([0.6, 0.5, 0.4]), 2);
     let shading = Shading {
         appearance: &appearance,

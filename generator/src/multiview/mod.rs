@@ -10,6 +10,7 @@
 pub mod appearance;
 pub mod cameras;
 pub mod layout;
+pub mod scene;
 pub mod shade;
 
 use std::path::PathBuf;
@@ -23,10 +24,11 @@ use crate::export::objects::ObjectToExport;
 use crate::kinematics::link_poses;
 use crate::objects::ArticulatedObject;
 use crate::scan::camera::Camera;
-use crate::scan::scene::{PosedScene, SceneError};
+use crate::scan::scene::SceneError;
 use crate::seed::{rng_for, Stream};
 use appearance::{Appearance, Lighting, Material};
 use cameras::Placement;
+use scene::RenderScene;
 use shade::{shade, Shading, ViewImages};
 
 /// Largest image side a render accepts.
@@ -214,7 +216,7 @@ pub struct RenderJob {
     /// Joint values of each state.
     pub states: Vec<Vec<Real>>,
     /// The posed object of each state.
-    pub scenes: Vec<PosedScene>,
+    pub scenes: Vec<RenderScene>,
     /// Part of each link: a link starts a part when its joint's value differs between
     /// states.
     pub part_of_link: Vec<PartId>,
@@ -254,7 +256,7 @@ impl RenderJob {
         }
         let scenes = states
             .iter()
-            .map(|values| PosedScene::new(&object.object, &link_poses(&object.object, values)))
+            .map(|values| RenderScene::new(&object.object, &link_poses(&object.object, values)))
             .collect::<Result<Vec<_>, _>>()
             .map_err(|source| RenderError::Scene { object: name.clone(), source })?;
         let (lo, hi) = bounds(&scenes);
@@ -423,7 +425,7 @@ pub fn posed_mesh(
 }
 
 /// Bounding box (lowest and highest corner) of an object over its posed states.
-pub fn bounds(scenes: &[PosedScene]) -> (Point3, Point3) {
+pub fn bounds(scenes: &[RenderScene]) -> (Point3, Point3) {
     scenes
         .iter()
         .flat_map(|s| s.corners())

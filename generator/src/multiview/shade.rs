@@ -6,9 +6,9 @@ use pairs::PartId;
 use rayon::prelude::*;
 
 use super::appearance::{Appearance, Lighting};
+use super::scene::RenderScene;
 use crate::scan::camera::Camera;
-use crate::scan::render::pixel_window;
-use crate::scan::scene::PosedScene;
+use crate::scan::render::window_of;
 
 /// The images of one view, row-major from the top-left pixel.
 #[derive(Debug, Clone, PartialEq)]
@@ -49,7 +49,7 @@ pub struct Shading<'a> {
 
 /// Renders one view. Only pixels inside the projection of the scene's bounding box cast
 /// rays; each pixel is computed on its own, so the result does not depend on threads.
-pub fn shade(scene: &PosedScene, camera: &Camera, shading: &Shading) -> ViewImages {
+pub fn shade(scene: &RenderScene, camera: &Camera, shading: &Shading) -> ViewImages {
     let k = &camera.intrinsics;
     let (width, height) = (k.width, k.height);
     let pixels = (width * height) as usize;
@@ -61,7 +61,7 @@ pub fn shade(scene: &PosedScene, camera: &Camera, shading: &Shading) -> ViewImag
         part: vec![None; pixels],
         normal: vec![Vector3::zeros(); pixels],
     };
-    let (u_range, v_range) = pixel_window(scene, camera);
+    let (u_range, v_range) = window_of(&scene.corners(), camera);
     let far = (camera.centre() - scene.centre()).norm() + scene.diagonal();
     let origin = camera.centre();
     let poses = scene.poses();

@@ -79,12 +79,21 @@ pub fn pixel_window(
     scene: &PosedScene,
     camera: &Camera,
 ) -> (std::ops::Range<u32>, std::ops::Range<u32>) {
+    window_of(&scene.corners(), camera)
+}
+
+/// The columns and rows a bounding box with `corners` covers through `camera` (the whole
+/// image if a corner lies behind it).
+pub fn window_of(
+    corners: &[pairs::math::Point3; 8],
+    camera: &Camera,
+) -> (std::ops::Range<u32>, std::ops::Range<u32>) {
     let k = &camera.intrinsics;
     let whole = (0..k.width, 0..k.height);
     let mut lo = [Real::MAX; 2];
     let mut hi = [Real::MIN; 2];
-    for corner in scene.corners() {
-        let Some((u, v, _)) = camera.project(&corner) else {
+    for corner in corners {
+        let Some((u, v, _)) = camera.project(corner) else {
             return whole;
         };
         lo = [lo[0].min(u), lo[1].min(v)];
