@@ -99,6 +99,14 @@ pub enum EvalError {
     /// broken; the error names the file).
     #[error(transparent)]
     Predictions(#[from] pairs::PredictionsError),
+    /// The render benchmark's render cannot be made or read.
+    #[error("render {name}: {message}")]
+    Render {
+        /// The render's name.
+        name: String,
+        /// What went wrong.
+        message: String,
+    },
     /// A render's ground truth or a joints-only prediction file cannot be used.
     #[error(transparent)]
     RenderFile(#[from] pairs::renders::RenderFileError),

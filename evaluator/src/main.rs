@@ -310,6 +310,7 @@ fn run(args: Args) -> Result<()> {
     if datasets.is_empty() {
         if args.all || args.user_datasets.is_empty() {
             datasets.extend(default_datasets().into_iter().map(|s| s.name));
+            datasets.push(evaluator::running::renders::RENDER_DATASET.into());
         }
         datasets.extend(args.user_datasets.iter().map(|s| s.name.clone()));
     }

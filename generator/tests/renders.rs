@@ -589,3 +589,46 @@ fn an_asset_renders_with_its_own_materials_and_textures() {
     }
     assert!(body > 500 && lid > 200, "{body} body and {lid} lid pixels");
 }
+
+#[test]
+fn back_projected_clouds_lie_on_the_states_and_move_with_their_parts() {
+    let dir = tempfile::tempdir().expect("tmp");
+    let root = dir.path().join("r");
+    render(Layout::Native, 2, &root);
+    let pairs = generator::multiview::backproject::render_pairs(&root, 256).expect("pairs");
+    assert_eq!(pairs.len(), 2);
+    let config = GeneratorConfig { objects: 2, ..GeneratorConfig::default() };
+    let render_config = RenderConfig { states: 2, ..small_config() };
+    for (object, pair) in built_in_objects(&config).expect("objects").into_iter().zip(&pairs) {
+        let job = RenderJob::new(&render_config, 0, object, None, Layout::Native).expect("job");
+        let mesh = |s: usize| {
+            let (v, t) = generator::multiview::posed_mesh(&job, s, None);
+            TriMesh::new(v, t).expect("mesh")
+        };
+        let (m0, m1) = (mesh(0), mesh(1));
+        assert_eq!((pair.p.len(), pair.q.len()), (256, 256));
+        let tolerance = 2e-3 * job.scenes[0].diagonal();
+        for (x, &k) in pair.p.iter().zip(&pair.part_p) {
+            assert!(
+                m0.distance_to_local_point(x, true) < tolerance,
+                "{}: P on state 0",
+                pair.folder
+            );
+            let moved = pair.motions[usize::from(k)] * x;
+            assert!(
+                m1.distance_to_local_point(&moved, true) < tolerance,
+                "{}: part {k} moves onto state 1",
+                pair.folder
+            );
+        }
+        for y in &pair.q {
+            assert!(
+                m1.distance_to_local_point(y, true) < tolerance,
+                "{}: Q on state 1",
+                pair.folder
+            );
+        }
+        let parts: std::collections::BTreeSet<_> = pair.part_p.iter().collect();
+        assert_eq!(parts.len(), job.parts, "every part is seen");
+    }
+}

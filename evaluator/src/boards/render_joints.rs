@@ -9,7 +9,9 @@ use std::path::Path;
 
 use pairs::atomic::replace_file;
 use pairs::metrics::render_joints::{score_object, Variant, VariantScores};
-use pairs::renders::{read_predictions, read_truth, RenderJoint};
+use std::collections::BTreeMap;
+
+use pairs::renders::{read_predictions, read_truth, RenderJoint, RenderTruth};
 
 use crate::error::EvalError;
 
@@ -73,19 +75,30 @@ pub fn score_render(
             message: format!("the names {render:?} and {method:?} must not hold commas"),
         });
     }
-    Ok(Variant::ALL
+    Ok(score_joints(&truth, &file.objects, &render, &method))
+}
+
+/// The board's lines of `method`'s joints (per object folder) on a render's `truth`, one
+/// per variant.
+pub fn score_joints(
+    truth: &RenderTruth,
+    predicted: &BTreeMap<String, Vec<RenderJoint>>,
+    render: &str,
+    method: &str,
+) -> Vec<RenderJointRow> {
+    Variant::ALL
         .iter()
         .map(|&variant| {
             let mut scores = VariantScores::default();
             for object in &truth.objects {
-                let predicted = file.objects.get(&object.folder).map_or(&[][..], Vec::as_slice);
+                let guess = predicted.get(&object.folder).map_or(&[][..], Vec::as_slice);
                 let joints: Vec<RenderJoint> =
                     object.joints.iter().map(|j| j.joint.clone()).collect();
-                scores.add(&score_object(variant, predicted, &joints, object.diagonal));
+                scores.add(&score_object(variant, guess, &joints, object.diagonal));
             }
-            RenderJointRow { render: render.clone(), method: method.clone(), variant, scores }
+            RenderJointRow { render: render.into(), method: method.into(), variant, scores }
         })
-        .collect())
+        .collect()
 }
 
 /// Adds `rows` to the board in `reports`, replacing the lines of the same render and
@@ -152,4 +165,73 @@ pub fn table(rows: &[RenderJointRow]) -> Vec<String> {
         ));
     }
     out
+}
+
+/// The LEADERBOARD.md section of the board in `reports` (`None` when there is no board):
+/// per render and method, the right-type fraction and the mean errors in each convention.
+pub fn section(reports: &Path) -> Option<String> {
+    let text = std::fs::read_to_string(reports.join(RENDER_JOINTS_FILE)).ok()?;
+    let mut lines = text.lines();
+    if lines.next() != Some(HEADER) {
+        return None;
+    }
+    // (render, method) -> variant -> fields, in board order.
+    type Fields = BTreeMap<String, Vec<String>>;
+    let mut rows: Vec<((String, String), Fields)> = Vec::new();
+    for line in lines {
+        let f: Vec<String> = line.split(',').map(str::to_string).collect();
+        if f.len() != 10 {
+            continue;
+        }
+        let key = (f[0].clone(), f[1].clone());
+        let at = match rows.iter().position(|(k, _)| *k == key) {
+            Some(i) => i,
+            None => {
+                rows.push((key, BTreeMap::new()));
+                rows.len() - 1
+            }
+        };
+        rows[at].1.insert(f[2].clone(), f);
+    }
+    let mut out = String::from(
+        "## Joints of renders\n\nJoints on renders for image-based methods (`generator render`; \
+         `joints_renders.csv`, docs/METRICS.md \"Joints of a render\"). On the default render \
+         (`datasets/render`: the 26 test objects, two states, eight views at 320 x 240) every \
+         row that runs on a pair's input sees two clouds of 512 points back-projected from the \
+         depth images of each state; its joints are its segments' motions relative to its \
+         largest segment, in the object frame. Rows scored with `evaluator score` from a \
+         joints-only file sit beside them. The same errors in four conventions: ours \
+         (distances over the object's diagonal), PARIS's (0 for parallel axes), \
+         DigitalTwinArt's (distances x 10) and ArtGS's (DigitalTwinArt's, matching joints of \
+         the same type only). Angles and states in degrees; distances in world units.\n\n\
+         | render | row | joints | type acc. | angle° | distance | state° | PARIS dist. | PARIS state° | DTA dist. | DTA state° | ArtGS dist. | ArtGS state° |\n\
+         |---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+    );
+    let cell = |v: Option<&String>| match v {
+        Some(s) if !s.is_empty() => {
+            s.parse::<f64>().map_or_else(|_| s.clone(), |x| format!("{x:.3}"))
+        }
+        _ => "–".into(),
+    };
+    for ((render, method), variants) in rows {
+        let get =
+            |variant: &str, column: usize| cell(variants.get(variant).and_then(|f| f.get(column)));
+        let joints =
+            variants.get("ours").map_or_else(String::new, |f| format!("{}/{}", f[4], f[3]));
+        out.push_str(&format!(
+            "| {render} | `{method}` | {joints} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
+            get("ours", 5),
+            get("ours", 6),
+            get("ours", 7),
+            get("ours", 8),
+            get("paris", 7),
+            get("paris", 8),
+            get("dta", 7),
+            get("dta", 8),
+            get("artgs", 7),
+            get("artgs", 8),
+        ));
+    }
+    out.push('\n');
+    Some(out)
 }

@@ -211,6 +211,9 @@ pub fn write_report(
             .collect();
         table(&mut out, &head, &rows);
     }
+    if let Some(section) = super::render_joints::section(dir) {
+        out.push_str(&section);
+    }
     if !sweeps.is_empty() {
         out.push_str(
             "## Tuned parameters\n\nEach baseline's parameters were chosen for each flow source \

@@ -17,6 +17,7 @@ use crate::boards::iterations::{
 };
 use crate::boards::leaderboard::{Leaderboards, Scored};
 use crate::boards::plots::write_pcc_plots;
+use crate::boards::render_joints::upsert as upsert_render_joints;
 use crate::boards::report::write_report;
 use crate::boards::sets::{set_board, write_set_board, ScoredSets, SetBoardRow};
 use crate::datasets::{
@@ -25,6 +26,7 @@ use crate::datasets::{
 };
 use crate::error::EvalError;
 use crate::rows::registry::{Board, Entry, Registry, Runner};
+use crate::running::renders::{ensure_render, render_rows, RENDER_DATASET};
 use crate::running::run::{
     cached_run, predict_pair, prepare, run_entry, FlowCache, RunOptions, RunResult,
 };
@@ -112,12 +114,14 @@ pub fn evaluate(
     options: &Options,
     progress: &dyn Progress,
 ) -> Result<Summary, EvalError> {
+    let render_chosen = options.datasets.iter().any(|d| d == RENDER_DATASET);
     let selected_specs: Vec<&DatasetSpec> = if options.datasets.is_empty() {
         specs.iter().collect()
     } else {
         options
             .datasets
             .iter()
+            .filter(|name| name.as_str() != RENDER_DATASET)
             .map(|name| {
                 specs.iter().find(|s| &s.name == name).ok_or_else(|| EvalError::Unknown {
                     what: "dataset",
@@ -254,6 +258,17 @@ pub fn evaluate(
     let gallery = write_gallery(&reports, options.gallery_pairs, &datasets, &scored)?;
     let sweeps: Vec<Sweep> =
         sweeps.into_iter().filter(|s| scored.iter().any(|r| r.entry.name == s.row)).collect();
+    // The render benchmark: every selected row that runs on a pair's input, on the joints of
+    // the default render's back-projected clouds (not with --limit).
+    if render_chosen && options.limit.is_none() {
+        let dir = ensure_render(&options.datasets_root, &|m| progress.notice(m))?;
+        let chosen: Vec<&Entry> =
+            entries.iter().filter(|e| selected.iter().any(|s| s.name == e.name)).collect();
+        let rows = render_rows(&chosen, &dir, &|row| {
+            progress.notice(&format!("{row} on {RENDER_DATASET}: joints"))
+        })?;
+        upsert_render_joints(&reports, &rows)?;
+    }
     write_report(&reports, &boards, &gallery, &sweeps, &set_board)?;
     let (mut iterations, mut iteration_joints) = (Vec::new(), Vec::new());
     for s in scored.iter().filter(|s| s.entry.name == ITERATIVE_ROW && !s.cross_instance) {

@@ -5,6 +5,7 @@
 pub mod memory;
 pub mod passes;
 pub mod record;
+pub mod renders;
 pub mod run;
 pub mod sets;
 pub mod source_hash;

@@ -106,7 +106,7 @@ impl FlowCache {
 }
 
 /// Runs `f`, turning a panic into an error message so one pair never aborts the run.
-fn guarded<T>(f: impl FnOnce() -> Result<T, String>) -> Result<T, String> {
+pub(crate) fn guarded<T>(f: impl FnOnce() -> Result<T, String>) -> Result<T, String> {
     match catch_unwind(AssertUnwindSafe(f)) {
         Ok(result) => result,
         Err(panic) => {

@@ -8,6 +8,7 @@
 //! the cameras are fixed by the config, so the same config and seed give identical files.
 
 pub mod appearance;
+pub mod backproject;
 pub mod cameras;
 pub mod layout;
 pub mod scene;

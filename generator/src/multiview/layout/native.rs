@@ -34,6 +34,9 @@ struct ObjectRecord<'a> {
     joints: Vec<JointStates>,
     appearance: &'a Appearance,
     depth_scale: Real,
+    /// Per state `s`, per part: its rigid motion from state 0 to state `s` (object frame),
+    /// a row-major 4 x 4 matrix.
+    part_motions: Vec<Vec<[[Real; 4]; 4]>>,
 }
 
 /// Writes one object; returns its folder name.
@@ -58,6 +61,16 @@ pub fn write_object(
             joints: job.joints(),
             appearance: &job.appearance,
             depth_scale: job.depth_scale,
+            part_motions: (0..job.states.len())
+                .map(|s| {
+                    (0..job.parts)
+                        .map(|k| {
+                            let m = job.part_motion(k as pairs::PartId, 0, s).to_homogeneous();
+                            std::array::from_fn(|r| std::array::from_fn(|c| m[(r, c)]))
+                        })
+                        .collect()
+                })
+                .collect(),
         },
     )?;
     write_json(

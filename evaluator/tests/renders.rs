@@ -1,0 +1,67 @@
+//! The render benchmark: the default render's clouds back-projected and scored on joints.
+//! The `gt` oracle (true parts and motions, joints estimated from them) must land on the
+//! true joints in every convention; a method that fails leaves every joint missed; the
+//! LEADERBOARD section lists both.
+
+use std::sync::Arc;
+
+use evaluator::boards::render_joints::{section, upsert, RenderJointRow};
+use evaluator::rows::registry::{Board, Registry};
+use evaluator::running::renders::render_rows;
+use generator::config::GeneratorConfig;
+use generator::export::objects::built_in_objects;
+use generator::multiview::layout::{write_render, Layout};
+use generator::multiview::{RenderConfig, RenderJob};
+use pairs::metrics::render_joints::Variant;
+use pairs::{Method, MethodError, PairInput, Prediction};
+
+struct Fails;
+
+impl Method for Fails {
+    fn name(&self) -> &str {
+        "fails"
+    }
+
+    fn predict(&self, input: &PairInput) -> Result<Prediction, MethodError> {
+        Err(MethodError::new(self.name(), &input.id, "always"))
+    }
+}
+
+#[test]
+fn the_oracle_finds_the_true_joints_and_a_failing_row_none() {
+    let dir = tempfile::tempdir().expect("tmp");
+    let root = dir.path().join("render");
+    let config =
+        RenderConfig { width: 160, height: 120, views: 6, states: 2, ..RenderConfig::default() };
+    let objects = GeneratorConfig { objects: 3, ..GeneratorConfig::default() };
+    let jobs = built_in_objects(&objects)
+        .expect("objects")
+        .into_iter()
+        .map(|o| RenderJob::new(&config, 0, o, None, Layout::Native));
+    write_render(&config, 0, jobs, Layout::Native, &root, false, &|_| {}).expect("render");
+    let mut registry = Registry::new();
+    registry.oracle();
+    registry.method(Arc::new(Fails), Board::Both, "fails v1");
+    let entries: Vec<_> = registry.entries().iter().collect();
+    let rows = render_rows(&entries, &root, &|_| {}).expect("rows");
+    assert_eq!(rows.len(), 2 * Variant::ALL.len());
+    let row = |method: &str, variant: Variant| -> &RenderJointRow {
+        rows.iter().find(|r| r.method == method && r.variant == variant).expect("row")
+    };
+    for variant in Variant::ALL {
+        let gt = row("gt", variant).scores;
+        assert!(
+            gt.joints >= 3 && gt.matched == gt.joints && gt.type_correct == gt.joints,
+            "{variant:?}: {gt:?}"
+        );
+        assert!(gt.angle() < 2.0, "{variant:?}: axis {}°", gt.angle());
+        let state = gt.revolute_state();
+        assert!(state.is_nan() || state < 2.0, "{variant:?}: state {state}°");
+        let failed = row("fails", variant).scores;
+        assert_eq!((failed.joints, failed.matched), (gt.joints, 0));
+    }
+    let reports = dir.path().join("reports");
+    upsert(&reports, &rows).expect("board");
+    let text = section(&reports).expect("a section");
+    assert!(text.contains("| render | `gt` |") && text.contains("| render | `fails` |"), "{text}");
+}
