@@ -5,9 +5,9 @@
 
 use std::sync::Arc;
 
-use evaluator::boards::render_joints::{section, upsert, RenderJointRow};
+use evaluator::boards::render_joints::{score_joints, section, upsert, RenderJointRow};
 use evaluator::rows::registry::{Board, Registry};
-use evaluator::running::renders::render_rows;
+use evaluator::running::renders::render_joints;
 use generator::config::GeneratorConfig;
 use generator::export::objects::built_in_objects;
 use generator::multiview::layout::{write_render, Layout};
@@ -43,7 +43,10 @@ fn the_oracle_finds_the_true_joints_and_a_failing_row_none() {
     registry.oracle();
     registry.method(Arc::new(Fails), Board::Both, "fails v1");
     let entries: Vec<_> = registry.entries().iter().collect();
-    let rows = render_rows(&entries, &root, &|_| {}).expect("rows");
+    let joints = render_joints(&entries, &root, &|_| {}).expect("joints");
+    let truth = pairs::renders::read_truth(&root).expect("truth");
+    let rows: Vec<RenderJointRow> =
+        joints.iter().flat_map(|(row, p)| score_joints(&truth, p, "render", row)).collect();
     assert_eq!(rows.len(), 2 * Variant::ALL.len());
     let row = |method: &str, variant: Variant| -> &RenderJointRow {
         rows.iter().find(|r| r.method == method && r.variant == variant).expect("row")

@@ -17,7 +17,7 @@ use crate::boards::iterations::{
 };
 use crate::boards::leaderboard::{Leaderboards, Scored};
 use crate::boards::plots::write_pcc_plots;
-use crate::boards::render_joints::upsert as upsert_render_joints;
+use crate::boards::render_joints::{score_joints, upsert as upsert_render_joints};
 use crate::boards::report::write_report;
 use crate::boards::sets::{set_board, write_set_board, ScoredSets, SetBoardRow};
 use crate::datasets::{
@@ -26,7 +26,7 @@ use crate::datasets::{
 };
 use crate::error::EvalError;
 use crate::rows::registry::{Board, Entry, Registry, Runner};
-use crate::running::renders::{ensure_render, render_rows, RENDER_DATASET};
+use crate::running::renders::{ensure_render, render_joints, RENDER_DATASET};
 use crate::running::run::{
     cached_run, predict_pair, prepare, run_entry, FlowCache, RunOptions, RunResult,
 };
@@ -264,9 +264,14 @@ pub fn evaluate(
         let dir = ensure_render(&options.datasets_root, &|m| progress.notice(m))?;
         let chosen: Vec<&Entry> =
             entries.iter().filter(|e| selected.iter().any(|s| s.name == e.name)).collect();
-        let rows = render_rows(&chosen, &dir, &|row| {
+        let joints = render_joints(&chosen, &dir, &|row| {
             progress.notice(&format!("{row} on {RENDER_DATASET}: joints"))
         })?;
+        let truth = pairs::renders::read_truth(&dir)?;
+        let rows: Vec<_> = joints
+            .iter()
+            .flat_map(|(row, predicted)| score_joints(&truth, predicted, RENDER_DATASET, row))
+            .collect();
         upsert_render_joints(&reports, &rows)?;
     }
     write_report(&reports, &boards, &gallery, &sweeps, &set_board)?;

@@ -18,11 +18,10 @@ use generator::multiview::layout::{write_render, Layout};
 use generator::multiview::{RenderConfig, RenderJob};
 use pairs::joint_estimate::{estimate_joint, estimate_joints, JointParams};
 use pairs::math::Vector3;
-use pairs::renders::{read_truth, RenderJoint, GROUND_TRUTH_FILE};
+use pairs::renders::{RenderJoint, GROUND_TRUTH_FILE};
 use pairs::{Cloud, JointKind, PairInput, PairKind, Prediction, Similarity};
 use rayon::prelude::*;
 
-use crate::boards::render_joints::{score_joints, RenderJointRow};
 use crate::error::EvalError;
 use crate::rows::registry::{Entry, FlowSource, Runner};
 use crate::running::run::guarded;
@@ -74,13 +73,16 @@ struct Prepared {
     input: PairInput,
 }
 
-/// Every row of `entries` that runs on renders, on the render in `dir`: the board lines.
-pub fn render_rows(
+/// One row's joints on a render: per object folder, the joints its prediction implies
+/// (objects it failed on are left out).
+pub type RowJoints = (String, BTreeMap<String, Vec<RenderJoint>>);
+
+/// Every row of `entries` that runs on renders, on the render in `dir`: its joints.
+pub fn render_joints(
     entries: &[&Entry],
     dir: &Path,
     progress: &dyn Fn(&str),
-) -> Result<Vec<RenderJointRow>, EvalError> {
-    let truth = read_truth(dir)?;
+) -> Result<Vec<RowJoints>, EvalError> {
     let generate = |message: String| EvalError::Render { name: RENDER_DATASET.into(), message };
     let prepared: Vec<Prepared> = render_pairs(dir, RENDER_POINTS)
         .map_err(|e| generate(e.to_string()))?
@@ -94,8 +96,6 @@ pub fn render_rows(
             Ok(Prepared { pair, input })
         })
         .collect::<Result<_, _>>()?;
-    let render =
-        dir.file_name().map_or(RENDER_DATASET.into(), |n| n.to_string_lossy().into_owned());
     let mut flows: HashMap<String, Vec<Result<Vec<Vector3>, String>>> = HashMap::new();
     let mut rows = Vec::new();
     for entry in entries.iter().copied().filter(|e| runs_on_renders(e)) {
@@ -120,7 +120,7 @@ pub fn render_rows(
                 prediction.ok().map(|pred| (p.pair.folder.clone(), joints_of(&pred, &p.input)))
             })
             .collect();
-        rows.extend(score_joints(&truth, &predicted, &render, &entry.name));
+        rows.push((entry.name.clone(), predicted));
     }
     Ok(rows)
 }
