@@ -75,14 +75,7 @@ impl RenderScene {
 
     /// The eight corners of the bounding box.
     pub fn corners(&self) -> [Point3; 8] {
-        std::array::from_fn(|i| {
-            let pick = |bit: usize, lo: Real, hi: Real| if i >> bit & 1 == 0 { lo } else { hi };
-            Point3::new(
-                pick(0, self.min.x, self.max.x),
-                pick(1, self.min.y, self.max.y),
-                pick(2, self.min.z, self.max.z),
-            )
-        })
+        crate::scan::scene::box_corners(&self.min, &self.max)
     }
 
     /// Pose of every link in this state.

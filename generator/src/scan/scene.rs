@@ -80,14 +80,7 @@ impl PosedScene {
 
     /// The eight corners of the bounding box.
     pub fn corners(&self) -> [Point3; 8] {
-        std::array::from_fn(|i| {
-            let pick = |bit: usize, lo: Real, hi: Real| if i >> bit & 1 == 0 { lo } else { hi };
-            Point3::new(
-                pick(0, self.min.x, self.max.x),
-                pick(1, self.min.y, self.max.y),
-                pick(2, self.min.z, self.max.z),
-            )
-        })
+        box_corners(&self.min, &self.max)
     }
 
     /// The first surface the ray from `origin` along the unit `direction` meets within
@@ -110,6 +103,15 @@ impl PosedScene {
             normal: if facing < 0.0 { -hit.normal } else { hit.normal },
         })
     }
+}
+
+/// The eight corners of the box from `min` to `max`, corner `i` taking the upper bound on
+/// axis `a` when bit `a` of `i` is set.
+pub fn box_corners(min: &Point3, max: &Point3) -> [Point3; 8] {
+    std::array::from_fn(|i| {
+        let pick = |bit: usize, lo: Real, hi: Real| if i >> bit & 1 == 0 { lo } else { hi };
+        Point3::new(pick(0, min.x, max.x), pick(1, min.y, max.y), pick(2, min.z, max.z))
+    })
 }
 
 #[cfg(test)]

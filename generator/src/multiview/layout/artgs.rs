@@ -44,13 +44,7 @@ pub fn write_object(
     out: &Path,
     tick: &(dyn Fn() + Sync),
 ) -> Result<String, RenderError> {
-    if job.states.len() != 2 {
-        return Err(RenderError::Layout {
-            object: job.name.clone(),
-            layout: "artgs",
-            reason: format!("ArtGS reads two states, not {}", job.states.len()),
-        });
-    }
+    super::two_states(job, "artgs", "ArtGS")?;
     let folder = object_folder(&job.name);
     let dir = out.join(&folder);
     let frame = super::Layout::Artgs.frame(job);

@@ -34,13 +34,7 @@ pub fn write_object(
     out: &Path,
     tick: &(dyn Fn() + Sync),
 ) -> Result<String, RenderError> {
-    if job.states.len() != 2 {
-        return Err(RenderError::Layout {
-            object: job.name.clone(),
-            layout: "dta",
-            reason: format!("DigitalTwinArt reads two states, not {}", job.states.len()),
-        });
-    }
+    super::two_states(job, "dta", "DigitalTwinArt")?;
     let dir = out.join(&job.name);
     let k = &job.cameras[0].intrinsics;
     let cam_k = format!("{:.9} 0.0 {:.9}\n0.0 {:.9} {:.9}\n0.0 0.0 1.0\n", k.fx, k.cx, k.fy, k.cy);

@@ -185,6 +185,23 @@ pub(crate) fn each_view(
     })
 }
 
+/// Refuses a job that is not of two states, for a layout whose method (`reader`) reads a
+/// start and an end state only.
+pub(crate) fn two_states(
+    job: &RenderJob,
+    layout: &'static str,
+    reader: &str,
+) -> Result<(), RenderError> {
+    if job.states.len() == 2 {
+        return Ok(());
+    }
+    Err(RenderError::Layout {
+        object: job.name.clone(),
+        layout,
+        reason: format!("{reader} reads two states, not {}", job.states.len()),
+    })
+}
+
 /// Writes pretty JSON.
 pub(crate) fn write_json(path: &Path, value: &impl Serialize) -> Result<(), RenderError> {
     let mut text = serde_json::to_string_pretty(value)

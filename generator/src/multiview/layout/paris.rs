@@ -51,9 +51,7 @@ pub fn write_object(
 ) -> Result<String, RenderError> {
     let refuse =
         |reason: String| RenderError::Layout { object: job.name.clone(), layout: "paris", reason };
-    if job.states.len() != 2 {
-        return Err(refuse(format!("PARIS reads two states, not {}", job.states.len())));
-    }
+    super::two_states(job, "paris", "PARIS")?;
     let joints = part_joints(job);
     if joints.len() != 1 || job.parts != 2 {
         return Err(refuse(format!(
