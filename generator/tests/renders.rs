@@ -632,3 +632,131 @@ fn back_projected_clouds_lie_on_the_states_and_move_with_their_parts() {
         assert_eq!(parts.len(), job.parts, "every part is seen");
     }
 }
+
+/// A glTF box's positions (8 corners) and triangles (12, counter-clockwise from outside).
+fn gltf_box(lo: [f32; 3], hi: [f32; 3]) -> (Vec<[f32; 3]>, Vec<u32>) {
+    let corners = (0..8)
+        .map(|i| {
+            [
+                if i & 1 == 0 { lo[0] } else { hi[0] },
+                if i & 2 == 0 { lo[1] } else { hi[1] },
+                if i & 4 == 0 { lo[2] } else { hi[2] },
+            ]
+        })
+        .collect();
+    let quads =
+        [[0, 4, 6, 2], [1, 3, 7, 5], [0, 1, 5, 4], [2, 6, 7, 3], [0, 2, 3, 1], [4, 5, 7, 6]];
+    let triangles = quads.iter().flat_map(|q| [q[0], q[1], q[2], q[0], q[2], q[3]]).collect();
+    (corners, triangles)
+}
+
+#[test]
+fn a_gltf_asset_renders_with_its_base_colours_and_textures() {
+    use base64::Engine as _;
+    let dir = tempfile::tempdir().expect("tmp");
+    let root = dir.path();
+    let mut texture = image::RgbImage::new(2, 2);
+    for (x, y, p) in texture.enumerate_pixels_mut() {
+        *p = if (x + y) % 2 == 0 { image::Rgb([20, 30, 230]) } else { image::Rgb([20, 230, 30]) };
+    }
+    texture.save(root.join("checker.png")).expect("png");
+    // One buffer: per box 8 positions, 36 u32 indices, 8 texture coordinates.
+    let mut buffer = Vec::new();
+    let mut views = Vec::new();
+    let mut accessors = Vec::new();
+    for (lo, hi) in
+        [([-0.5f32, 0.0, -0.3], [0.5f32, 0.4, 0.3]), ([-0.5, 0.4, -0.3], [0.5, 0.45, 0.3])]
+    {
+        let (positions, indices) = gltf_box(lo, hi);
+        let mut add = |bytes: Vec<u8>, accessor: serde_json::Value| {
+            views.push(serde_json::json!({"buffer": 0, "byteOffset": buffer.len(), "byteLength": bytes.len()}));
+            buffer.extend(bytes);
+            let mut a = accessor;
+            a["bufferView"] = serde_json::json!(views.len() - 1);
+            accessors.push(a);
+        };
+        add(
+            positions.iter().flatten().flat_map(|f| f.to_le_bytes()).collect(),
+            serde_json::json!({"componentType": 5126, "count": 8, "type": "VEC3", "min": lo, "max": hi}),
+        );
+        add(
+            indices.iter().flat_map(|i| i.to_le_bytes()).collect(),
+            serde_json::json!({"componentType": 5125, "count": 36, "type": "SCALAR"}),
+        );
+        add(
+            (0..8).flat_map(|_| [0.25f32, 0.25]).flat_map(|f| f.to_le_bytes()).collect(),
+            serde_json::json!({"componentType": 5126, "count": 8, "type": "VEC2"}),
+        );
+    }
+    let uri = format!(
+        "data:application/octet-stream;base64,{}",
+        base64::engine::general_purpose::STANDARD.encode(&buffer)
+    );
+    let prim = |k: usize, material: usize| serde_json::json!({"primitives": [{"attributes": {"POSITION": 3 * k, "TEXCOORD_0": 3 * k + 2}, "indices": 3 * k + 1, "material": material}]});
+    let gltf = serde_json::json!({
+        "asset": {"version": "2.0"},
+        "scene": 0,
+        "scenes": [{"nodes": [0, 1]}],
+        "nodes": [{"name": "body", "mesh": 0}, {"name": "lid", "mesh": 1}],
+        "meshes": [prim(0, 0), prim(1, 1)],
+        "materials": [
+            {"name": "red", "pbrMetallicRoughness": {"baseColorFactor": [0.9, 0.1, 0.1, 1.0]}},
+            {"name": "checker", "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}
+        ],
+        "textures": [{"source": 0}],
+        "images": [{"uri": "checker.png"}],
+        "buffers": [{"byteLength": buffer.len(), "uri": uri}],
+        "bufferViews": views,
+        "accessors": accessors,
+    });
+    std::fs::write(root.join("box.gltf"), gltf.to_string()).expect("gltf");
+    let joints = r#"{"category": "box", "joints": [{"name": "hinge", "type": "revolute", "parent": "body", "child": "lid", "origin": [0.0, 0.4, -0.3], "axis": [1.0, 0.0, 0.0], "lower": 0.0, "upper": 1.2}]}"#;
+    std::fs::write(root.join("box.joints.json"), joints).expect("sidecar");
+    let imported = generator::import::load_asset(
+        &root.join("box.gltf"),
+        &generator::import::ImportOptions::default(),
+    )
+    .expect("asset");
+    let object = ObjectToExport {
+        object_id: 0,
+        object: imported.object,
+        source: Source::Asset { path: "box.gltf".into() },
+        surfaces: imported.surfaces,
+    };
+    let config = RenderConfig {
+        width: 120,
+        height: 90,
+        views: 6,
+        placement: generator::multiview::cameras::Placement::Hemisphere,
+        ..RenderConfig::default()
+    };
+    let job = RenderJob::new(&config, 0, object, None, Layout::Native).expect("job");
+    assert_eq!(
+        job.appearance.asset_materials,
+        vec![vec!["red".to_string()], vec!["checker".to_string()]]
+    );
+    let (mut body, mut lid) = (0, 0);
+    for view in 0..6 {
+        let images = job.view(&config, 0, view);
+        for (rgb, part) in images.rgb.iter().zip(&images.part) {
+            match part {
+                Some(0) => {
+                    assert!(
+                        rgb[0] > 3.0 * rgb[1] && rgb[0] > 3.0 * rgb[2],
+                        "the body is red: {rgb:?}"
+                    );
+                    body += 1;
+                }
+                Some(_) => {
+                    assert!(
+                        rgb[2] > 3.0 * rgb[0] && rgb[2] > 3.0 * rgb[1],
+                        "the lid is the blue texel: {rgb:?}"
+                    );
+                    lid += 1;
+                }
+                None => {}
+            }
+        }
+    }
+    assert!(body > 500 && lid > 200, "{body} body and {lid} lid pixels");
+}

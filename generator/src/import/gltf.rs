@@ -20,8 +20,10 @@ use super::mesh_build::build_mesh;
 use super::obj_groups::category;
 use super::sidecar::{read_sidecar, sidecar_path, JointSpec, Sidecar};
 use super::skeleton::{RawJoint, RawKind, RawLink, Skeleton};
+use super::surface::{Surface, SurfaceMaterial};
 use super::{text, ImportError};
 use crate::mesh::Mesh;
+use std::sync::Arc;
 
 /// The skeleton of the glTF or GLB at `path` and the other files read (sidecar, buffers).
 pub fn read_gltf_asset(path: &Path) -> Result<(Skeleton, Vec<PathBuf>), ImportError> {
@@ -65,14 +67,15 @@ pub fn gltf_skeleton(
     let document = document(path, json)?;
     let mut files = Vec::new();
     let buffers = load_buffers(&document, bin, external, &mut files)?;
+    let materials = super::gltf_data::materials(&document, &buffers, external);
     let nodes = scene_nodes(&document)?;
     let mut links = Vec::with_capacity(nodes.len());
     let mut declared = Vec::new();
     let all: Vec<::gltf::Node> = document.nodes().collect();
     for placed in &nodes {
         let node = all.get(placed.index).ok_or_else(|| cycle(placed))?;
-        let mesh = node_mesh(node, placed, &buffers)?;
-        links.push(RawLink { name: placed.name.clone(), mesh, surface: Default::default() });
+        let (mesh, surface) = node_mesh(node, placed, &buffers, &materials)?;
+        links.push(RawLink { name: placed.name.clone(), mesh, surface });
         if sidecar.is_none() {
             if let Some(extras) = node.extras() {
                 let extras: NodeExtras = serde_json::from_str(extras.get()).map_err(|e| {
@@ -162,15 +165,18 @@ fn scene_nodes(document: &::gltf::Document) -> Result<Vec<Placed>, ImportError> 
     Ok(placed)
 }
 
-/// The triangles of a node's mesh in the rest frame (empty for a node without a mesh);
-/// primitives that are not triangle lists are skipped.
+/// The triangles of a node's mesh in the rest frame (empty for a node without a mesh) and
+/// their surface (each primitive's material and `TEXCOORD_0`); primitives that are not
+/// triangle lists are skipped.
 fn node_mesh(
     node: &::gltf::Node,
     placed: &Placed,
     buffers: &[Vec<u8>],
-) -> Result<Mesh, ImportError> {
-    let Some(mesh) = node.mesh() else { return Ok(Mesh::default()) };
+    materials: &[Arc<SurfaceMaterial>],
+) -> Result<(Mesh, Surface), ImportError> {
+    let Some(mesh) = node.mesh() else { return Ok((Mesh::default(), Surface::default())) };
     let (mut positions, mut triangles) = (Vec::new(), Vec::new());
+    let mut surface = Surface::default();
     for primitive in mesh.primitives().filter(|p| p.mode() == Mode::Triangles) {
         let fail = |reason: String| ImportError::Accessor { node: placed.name.clone(), reason };
         let accessor = primitive
@@ -207,19 +213,44 @@ fn node_mesh(
                 }
             }
         };
+        let uv = texcoords(&primitive, buffers);
+        let material = primitive.material().index().and_then(|i| materials.get(i).cloned());
         for t in indices.chunks_exact(3) {
             // An index past this primitive's vertices is past every vertex: `u32::MAX`.
             let shift = |i: u32| if i < count { i + offset } else { u32::MAX };
             triangles.push([shift(t[0]), shift(t[1]), shift(t[2])]);
+            if t.iter().all(|&i| i < count) {
+                let at = |k: usize| positions[(t[k] + offset) as usize];
+                surface.corners.push([at(0), at(1), at(2)]);
+                let corner = |i: u32| uv.as_ref().and_then(|uv| uv.get(i as usize).copied());
+                surface.uv.push(match (corner(t[0]), corner(t[1]), corner(t[2])) {
+                    (Some(a), Some(b), Some(c)) => Some([a, b, c]),
+                    _ => None,
+                });
+                surface.material.push(material.clone());
+            }
         }
     }
     if triangles.is_empty() {
-        return Ok(Mesh::default());
+        return Ok((Mesh::default(), Surface::default()));
     }
-    build_mesh(&placed.name, &positions, &triangles).map_err(|e| match e {
+    let mesh = build_mesh(&placed.name, &positions, &triangles).map_err(|e| match e {
         ImportError::MeshFile { reason, .. } => {
             ImportError::Accessor { node: placed.name.clone(), reason }
         }
         other => other,
-    })
+    })?;
+    Ok((mesh, surface))
+}
+
+/// A primitive's `TEXCOORD_0` as float pairs with v flipped to the OBJ convention (glTF's
+/// origin is the image's top-left, OBJ's its bottom-left); `None` when absent or not float.
+fn texcoords(primitive: &::gltf::Primitive, buffers: &[Vec<u8>]) -> Option<Vec<[f32; 2]>> {
+    let accessor = primitive.get(&Semantic::TexCoords(0))?;
+    if accessor.data_type() != DataType::F32 || accessor.dimensions() != Dimensions::Vec2 {
+        return None;
+    }
+    let bytes = read_accessor(&accessor, buffers).ok()?;
+    let f = |c: &[u8]| f32::from_le_bytes([c[0], c[1], c[2], c[3]]);
+    Some(bytes.chunks_exact(8).map(|c| [f(&c[0..4]), 1.0 - f(&c[4..8])]).collect())
 }

@@ -154,3 +154,60 @@ pub fn read_accessor(accessor: &::gltf::Accessor, buffers: &[Vec<u8>]) -> Result
     }
     Ok(packed)
 }
+
+/// The document's materials as surface materials: the base colour factor, times the base
+/// colour texture where its image can be read (a buffer view, a base64 `data:` URI or a
+/// file beside the asset); an image that cannot be read is logged and left out.
+pub fn materials(
+    document: &::gltf::Document,
+    buffers: &[Vec<u8>],
+    external: &ExternalLoader,
+) -> Vec<std::sync::Arc<super::surface::SurfaceMaterial>> {
+    document
+        .materials()
+        .map(|m| {
+            let pbr = m.pbr_metallic_roughness();
+            let [r, g, b, _] = pbr.base_color_factor();
+            let texture = pbr.base_color_texture().and_then(|info| {
+                let bytes = image_bytes(&info.texture().source(), buffers, external);
+                let decoded =
+                    bytes.and_then(|b| image::load_from_memory(&b).map_err(|e| e.to_string()));
+                match decoded {
+                    Ok(image) => Some(std::sync::Arc::new(image.into_rgb8())),
+                    Err(e) => {
+                        tracing::warn!("glTF material {:?}: base colour texture: {e}", m.name());
+                        None
+                    }
+                }
+            });
+            std::sync::Arc::new(super::surface::SurfaceMaterial {
+                name: m.name().unwrap_or("material").to_string(),
+                colour: [r, g, b].map(|c| c.clamp(0.0, 1.0)),
+                texture,
+            })
+        })
+        .collect()
+}
+
+/// The encoded bytes of a glTF image.
+fn image_bytes(
+    image: &::gltf::image::Image,
+    buffers: &[Vec<u8>],
+    external: &ExternalLoader,
+) -> Result<Vec<u8>, String> {
+    match image.source() {
+        ::gltf::image::Source::View { view, .. } => {
+            let buffer = buffers.get(view.buffer().index()).ok_or("a view of a missing buffer")?;
+            let end = view.offset().checked_add(view.length()).filter(|&e| e <= buffer.len());
+            let end = end.ok_or("the image's view reaches past its buffer")?;
+            Ok(buffer[view.offset()..end].to_vec())
+        }
+        ::gltf::image::Source::Uri { uri, .. } if uri.starts_with("data:") => {
+            let (_, data) = uri.split_once(";base64,").ok_or("only base64 data URIs are read")?;
+            base64::engine::general_purpose::STANDARD.decode(data).map_err(|e| e.to_string())
+        }
+        ::gltf::image::Source::Uri { uri, .. } => {
+            external(uri).map(|(bytes, _)| bytes).map_err(|e| e.to_string())
+        }
+    }
+}

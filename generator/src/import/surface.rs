@@ -1,8 +1,8 @@
 //! What an asset's triangles look like, for `generator render`: per triangle its corners
 //! (in the same frame as the link's mesh), texture coordinates and material, kept as an
 //! unwelded soup beside the mesh (welding merges vertices across texture seams). Read from
-//! OBJ files with their MTL (`Kd` colour, `map_Kd` texture, PNG or JPEG) and from URDF
-//! `<material>` colours; glTF materials are not read yet.
+//! OBJ files with their MTL (`Kd` colour, `map_Kd` texture, PNG or JPEG), glTF materials
+//! (base colour factor and texture, `TEXCOORD_0`) and URDF `<material>` colours.
 
 use std::path::Path;
 use std::sync::Arc;
