@@ -293,6 +293,11 @@ fn run(args: Args) -> Result<()> {
         for spec in &specs {
             println!("  {:28} {}", spec.name, spec.dir(&args.datasets_root).display());
         }
+        let render = evaluator::running::renders::RENDER_DATASET;
+        println!(
+            "  {render:28} {} (render benchmark: joints only)",
+            args.datasets_root.join(render).display()
+        );
         return Ok(());
     }
     if !args.all
