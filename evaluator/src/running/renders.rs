@@ -14,16 +14,17 @@ use std::path::{Path, PathBuf};
 use generator::config::GeneratorConfig;
 use generator::export::objects::built_in_objects;
 use generator::multiview::backproject::{render_pairs, RenderPair};
+use generator::multiview::layout::RENDER_FORMAT_VERSION;
 use generator::multiview::layout::{write_render, Layout};
 use generator::multiview::{RenderConfig, RenderJob};
 use pairs::joint_estimate::{estimate_joint, estimate_joints, JointParams};
 use pairs::math::Vector3;
-use pairs::renders::{RenderJoint, GROUND_TRUTH_FILE};
+use pairs::renders::{RenderJoint, GROUND_TRUTH_FILE, RENDER_FILE};
 use pairs::{Cloud, JointKind, PairInput, PairKind, Prediction, Similarity};
 use rayon::prelude::*;
 
 use crate::error::EvalError;
-use crate::rows::registry::{Entry, FlowSource, Runner};
+use crate::rows::registry::{Board, Entry, FlowSource, Runner};
 use crate::running::run::guarded;
 
 /// The default render's name (its folder under the datasets root).
@@ -38,14 +39,29 @@ pub fn default_render_config() -> RenderConfig {
     RenderConfig { width: 320, height: 240, views: 8, states: 2, ..RenderConfig::default() }
 }
 
-/// Renders the default render into `root/render` unless it is there; returns its folder.
+/// Renders the default render into `root/render` unless a render of this format, layout and
+/// these settings is there (one that differs is rendered again, and the notice says why);
+/// returns its folder.
 pub fn ensure_render(root: &Path, notice: &dyn Fn(&str)) -> Result<PathBuf, EvalError> {
     let dir = root.join(RENDER_DATASET);
-    if dir.join(GROUND_TRUTH_FILE).exists() {
-        return Ok(dir);
-    }
-    notice(&format!("rendering {} (the render benchmark)", dir.display()));
     let config = default_render_config();
+    let current = std::fs::read_to_string(dir.join(RENDER_FILE))
+        .ok()
+        .and_then(|text| serde_json::from_str::<serde_json::Value>(&text).ok())
+        .map(|r| {
+            r["format_version"] == RENDER_FORMAT_VERSION
+                && r["layout"] == "native"
+                && r["seed"] == 0
+                && serde_json::to_value(&config).is_ok_and(|c| r["config"] == c)
+        });
+    match current {
+        Some(true) if dir.join(GROUND_TRUTH_FILE).exists() => return Ok(dir),
+        Some(_) => notice(&format!(
+            "rendering {} again: its format or settings are not this evaluator's",
+            dir.display()
+        )),
+        None => notice(&format!("rendering {} (the render benchmark)", dir.display())),
+    }
     let objects = GeneratorConfig { objects: RENDER_OBJECTS, ..GeneratorConfig::default() };
     let generate = |message: String| EvalError::Render { name: RENDER_DATASET.into(), message };
     let jobs = built_in_objects(&objects)
@@ -57,9 +73,13 @@ pub fn ensure_render(root: &Path, notice: &dyn Fn(&str)) -> Result<PathBuf, Eval
     Ok(dir)
 }
 
-/// Whether `entry` runs on a render's pairs: the oracle, a whole method, or a segmenter on
-/// a method's flow (not on the true flow, and not an external row).
+/// Whether `entry` runs on a render's pairs: a segmentation row (joints come from
+/// segments; a flow-only baseline has none) that is the oracle, a whole method, or a
+/// segmenter on a method's flow (not on the true flow, and not an external row).
 pub fn runs_on_renders(entry: &Entry) -> bool {
+    if entry.board == Board::Flow {
+        return false;
+    }
     match &entry.runner {
         Runner::Oracle | Runner::Method(_) => true,
         Runner::Segmenter { flow: FlowSource::Method(_), .. } => true,

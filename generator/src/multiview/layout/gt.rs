@@ -125,12 +125,33 @@ pub fn object_truth(job: &RenderJob, frame: &WorldFrame, folder: &str) -> Object
     }
 }
 
-/// The moving joints whose child starts a part, one per moving part, in part order.
+/// The moving joints whose child starts a part, one per moving part, in part order, each as
+/// its part's motion from state 0 to state 1 relative to the static part: the joint itself
+/// for a part on the static part; for a part on a moving part (whose motion carries its
+/// parent's), that motion as a screw (`pairs::screw`): a revolute joint about the screw's
+/// axis by its angle when it turns (its slide along the axis left out), else a prismatic
+/// joint along its translation, from value 0 to the angle or distance.
 pub fn part_joints(job: &RenderJob) -> Vec<JointStates> {
     let mut joints: Vec<JointStates> = job
         .joints()
         .into_iter()
         .filter(|j| j.moves && job.part_of_link.iter().position(|&p| p == j.part) == Some(j.child))
+        .map(|mut j| {
+            if job.part_of_link[j.parent] != 0 && job.states.len() >= 2 {
+                let motion = job.part_motion(j.part, 0, 1);
+                let screw = pairs::screw::Screw::of(&pairs::Similarity::from_isometry(&motion));
+                let (kind, value) = if screw.angle > 1e-4 {
+                    (JointKind::Revolute, screw.angle)
+                } else {
+                    (JointKind::Prismatic, screw.slide)
+                };
+                j.kind = kind;
+                j.value = vec![0.0, value];
+                j.axis = vec![screw.axis.into(); 2];
+                j.pivot = vec![screw.pivot.coords.into(); 2];
+            }
+            j
+        })
         .collect();
     joints.sort_by_key(|j| j.part);
     joints

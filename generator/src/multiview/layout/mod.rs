@@ -20,7 +20,7 @@ use super::{RenderConfig, RenderError, RenderJob};
 use crate::export::output::Staging;
 
 /// Version of the native layout, in `render.json`.
-pub const RENDER_FORMAT_VERSION: u32 = 1;
+pub const RENDER_FORMAT_VERSION: u32 = 2;
 
 /// A folder layout.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize)]
