@@ -47,15 +47,15 @@ struct ObjectRecord {
 
 fn read<T: serde::de::DeserializeOwned>(path: &Path) -> Result<T, RenderError> {
     let text = std::fs::read_to_string(path)
-        .map_err(|source| RenderError::Io { path: path.into(), source })?;
+        .map_err(|error| RenderError::Io { path: path.into(), error })?;
     serde_json::from_str(&text).map_err(|e| RenderError::Io {
         path: path.into(),
-        source: std::io::Error::new(std::io::ErrorKind::InvalidData, e.to_string()),
+        error: std::io::Error::new(std::io::ErrorKind::InvalidData, e.to_string()),
     })
 }
 
 fn image_error(path: &Path, source: image::ImageError) -> RenderError {
-    RenderError::Image { path: path.into(), source }
+    RenderError::Image { path: path.into(), error: source }
 }
 
 /// Every object of the native render in `dir` as a pair of `points` points per state.

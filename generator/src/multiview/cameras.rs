@@ -163,7 +163,7 @@ impl CameraRecord {
 /// Reads a camera file (see [`CameraFile`]).
 pub fn read(path: &Path) -> Result<Vec<Camera>, RenderError> {
     let text = std::fs::read_to_string(path)
-        .map_err(|source| RenderError::Io { path: path.into(), source })?;
+        .map_err(|error| RenderError::Io { path: path.into(), error })?;
     let file: CameraFile = serde_json::from_str(&text).map_err(|e| RenderError::Cameras {
         what: path.display().to_string(),
         reason: e.to_string(),

@@ -151,21 +151,22 @@ pub enum RenderError {
     /// An object cannot be built.
     #[error(transparent)]
     Object(#[from] crate::generate::GenerateError),
-    /// A file cannot be read or written.
-    #[error("{path}: {source}")]
+    /// A file cannot be read or written (the reason is in the message, not a source, so
+    /// that an error chain does not print it twice).
+    #[error("{path}: {error}")]
     Io {
         /// The file.
         path: PathBuf,
         /// Why.
-        source: std::io::Error,
+        error: std::io::Error,
     },
-    /// An image cannot be encoded.
-    #[error("encoding {path}: {source}")]
+    /// An image cannot be encoded or decoded.
+    #[error("image {path}: {error}")]
     Image {
         /// The file.
         path: PathBuf,
         /// Why.
-        source: image::ImageError,
+        error: image::ImageError,
     },
     /// The output folder cannot be written.
     #[error(transparent)]

@@ -205,7 +205,7 @@ pub(crate) fn two_states(
 /// Writes pretty JSON.
 pub(crate) fn write_json(path: &Path, value: &impl Serialize) -> Result<(), RenderError> {
     let mut text = serde_json::to_string_pretty(value)
-        .map_err(|e| RenderError::Io { path: path.into(), source: std::io::Error::other(e) })?;
+        .map_err(|e| RenderError::Io { path: path.into(), error: std::io::Error::other(e) })?;
     text.push('\n');
     write_bytes(path, text.as_bytes())
 }
@@ -214,9 +214,9 @@ pub(crate) fn write_json(path: &Path, value: &impl Serialize) -> Result<(), Rend
 pub(crate) fn write_bytes(path: &Path, bytes: &[u8]) -> Result<(), RenderError> {
     if let Some(dir) = path.parent() {
         std::fs::create_dir_all(dir)
-            .map_err(|source| RenderError::Io { path: dir.into(), source })?;
+            .map_err(|error| RenderError::Io { path: dir.into(), error })?;
     }
-    std::fs::write(path, bytes).map_err(|source| RenderError::Io { path: path.into(), source })
+    std::fs::write(path, bytes).map_err(|error| RenderError::Io { path: path.into(), error })
 }
 
 /// Writes a PNG.
@@ -228,7 +228,7 @@ pub(crate) fn write_png(
     colour: ExtendedColorType,
 ) -> Result<(), RenderError> {
     let bytes = crate::scan::images::png(data, width, height, colour)
-        .map_err(|source| RenderError::Image { path: path.into(), source })?;
+        .map_err(|error| RenderError::Image { path: path.into(), error })?;
     write_bytes(path, &bytes)
 }
 
