@@ -485,6 +485,71 @@ fn a_camera_file_is_used_as_given_and_bad_settings_are_refused() {
     assert_eq!(job.parts, 2, "PARIS renders move one part");
 }
 
+/// A 2 x 2 checker texture `checker.png` in `root` whose top-left texel is blue.
+fn write_checker(root: &Path) {
+    let mut texture = image::RgbImage::new(2, 2);
+    for (x, y, p) in texture.enumerate_pixels_mut() {
+        *p = if (x + y) % 2 == 0 { image::Rgb([20, 30, 230]) } else { image::Rgb([20, 230, 30]) };
+    }
+    texture.save(root.join("checker.png")).expect("png");
+}
+
+/// Loads the asset `file` in `root` (a `body` and a `lid` hinged to it, given a sidecar
+/// here) and checks that it renders with its own materials: the body red, the lid the
+/// texture's blue texel, under six views.
+fn assert_red_body_and_blue_lid(root: &Path, file: &str) {
+    let joints = r#"{"category": "box", "joints": [{"name": "hinge", "type": "revolute", "parent": "body", "child": "lid", "origin": [0.0, 0.4, -0.3], "axis": [1.0, 0.0, 0.0], "lower": 0.0, "upper": 1.2}]}"#;
+    std::fs::write(root.join("box.joints.json"), joints).expect("sidecar");
+    let imported = generator::import::load_asset(
+        &root.join(file),
+        &generator::import::ImportOptions::default(),
+    )
+    .expect("asset");
+    assert!(imported.surfaces.iter().all(|s| s.is_styled()));
+    let object = ObjectToExport {
+        object_id: 0,
+        object: imported.object,
+        source: Source::Asset { path: file.into() },
+        surfaces: imported.surfaces,
+    };
+    let config = RenderConfig {
+        width: 120,
+        height: 90,
+        views: 6,
+        placement: generator::multiview::cameras::Placement::Hemisphere,
+        ..RenderConfig::default()
+    };
+    let job = RenderJob::new(&config, 0, object, None, Layout::Native).expect("job");
+    assert_eq!(
+        job.appearance.asset_materials,
+        vec![vec!["red".to_string()], vec!["checker".to_string()]]
+    );
+    let (mut body, mut lid) = (0, 0);
+    for view in 0..6 {
+        let images = job.view(&config, 0, view);
+        for (rgb, part) in images.rgb.iter().zip(&images.part) {
+            match part {
+                Some(0) => {
+                    assert!(
+                        rgb[0] > 3.0 * rgb[1] && rgb[0] > 3.0 * rgb[2],
+                        "the body is red: {rgb:?}"
+                    );
+                    body += 1;
+                }
+                Some(_) => {
+                    assert!(
+                        rgb[2] > 3.0 * rgb[0] && rgb[2] > 3.0 * rgb[1],
+                        "the lid is the blue texel: {rgb:?}"
+                    );
+                    lid += 1;
+                }
+                None => {}
+            }
+        }
+    }
+    assert!(body > 500 && lid > 200, "{file}: {body} body and {lid} lid pixels");
+}
+
 /// An OBJ box from `lo` to `hi` (group `name`, material `material`, every corner at
 /// texture coordinates `uv`), its vertices numbered from `first`.
 fn obj_box(
@@ -523,11 +588,7 @@ fn an_asset_renders_with_its_own_materials_and_textures() {
     let dir = tempfile::tempdir().expect("tmp");
     let root = dir.path();
     // A red body (MTL Kd) and a lid textured by a 2 x 2 image whose top-left texel is blue.
-    let mut texture = image::RgbImage::new(2, 2);
-    for (x, y, p) in texture.enumerate_pixels_mut() {
-        *p = if (x + y) % 2 == 0 { image::Rgb([20, 30, 230]) } else { image::Rgb([20, 230, 30]) };
-    }
-    texture.save(root.join("checker.png")).expect("png");
+    write_checker(root);
     std::fs::write(
         root.join("box.mtl"),
         "newmtl red\nKd 0.9 0.1 0.1\nnewmtl checker\nKd 1 1 1\nmap_Kd checker.png\n",
@@ -539,56 +600,7 @@ fn an_asset_renders_with_its_own_materials_and_textures() {
         obj_box("lid", "checker", [-0.5, 0.4, -0.3], [0.5, 0.45, 0.3], 8, [0.25, 0.75])
     );
     std::fs::write(root.join("box.obj"), obj).expect("obj");
-    let joints = r#"{"category": "box", "joints": [{"name": "hinge", "type": "revolute", "parent": "body", "child": "lid", "origin": [0.0, 0.4, -0.3], "axis": [1.0, 0.0, 0.0], "lower": 0.0, "upper": 1.2}]}"#;
-    std::fs::write(root.join("box.joints.json"), joints).expect("sidecar");
-    let imported = generator::import::load_asset(
-        &root.join("box.obj"),
-        &generator::import::ImportOptions::default(),
-    )
-    .expect("asset");
-    assert!(imported.surfaces.iter().all(|s| s.is_styled()));
-    let object = ObjectToExport {
-        object_id: 0,
-        object: imported.object,
-        source: Source::Asset { path: "box.obj".into() },
-        surfaces: imported.surfaces,
-    };
-    let config = RenderConfig {
-        width: 120,
-        height: 90,
-        views: 6,
-        placement: generator::multiview::cameras::Placement::Hemisphere,
-        ..RenderConfig::default()
-    };
-    let job = RenderJob::new(&config, 0, object, None, Layout::Native).expect("job");
-    assert_eq!(
-        job.appearance.asset_materials,
-        vec![vec!["red".to_string()], vec!["checker".to_string()]]
-    );
-    let (mut body, mut lid) = (0, 0);
-    for view in 0..6 {
-        let images = job.view(&config, 0, view);
-        for (rgb, part) in images.rgb.iter().zip(&images.part) {
-            match part {
-                Some(0) => {
-                    assert!(
-                        rgb[0] > 3.0 * rgb[1] && rgb[0] > 3.0 * rgb[2],
-                        "the body is red: {rgb:?}"
-                    );
-                    body += 1;
-                }
-                Some(_) => {
-                    assert!(
-                        rgb[2] > 3.0 * rgb[0] && rgb[2] > 3.0 * rgb[1],
-                        "the lid is the blue texel: {rgb:?}"
-                    );
-                    lid += 1;
-                }
-                None => {}
-            }
-        }
-    }
-    assert!(body > 500 && lid > 200, "{body} body and {lid} lid pixels");
+    assert_red_body_and_blue_lid(root, "box.obj");
 }
 
 #[test]
@@ -656,11 +668,7 @@ fn a_gltf_asset_renders_with_its_base_colours_and_textures() {
     use base64::Engine as _;
     let dir = tempfile::tempdir().expect("tmp");
     let root = dir.path();
-    let mut texture = image::RgbImage::new(2, 2);
-    for (x, y, p) in texture.enumerate_pixels_mut() {
-        *p = if (x + y) % 2 == 0 { image::Rgb([20, 30, 230]) } else { image::Rgb([20, 230, 30]) };
-    }
-    texture.save(root.join("checker.png")).expect("png");
+    write_checker(root);
     // One buffer: per box 8 positions, 36 u32 indices, 8 texture coordinates.
     let mut buffer = Vec::new();
     let mut views = Vec::new();
@@ -711,53 +719,5 @@ fn a_gltf_asset_renders_with_its_base_colours_and_textures() {
         "accessors": accessors,
     });
     std::fs::write(root.join("box.gltf"), gltf.to_string()).expect("gltf");
-    let joints = r#"{"category": "box", "joints": [{"name": "hinge", "type": "revolute", "parent": "body", "child": "lid", "origin": [0.0, 0.4, -0.3], "axis": [1.0, 0.0, 0.0], "lower": 0.0, "upper": 1.2}]}"#;
-    std::fs::write(root.join("box.joints.json"), joints).expect("sidecar");
-    let imported = generator::import::load_asset(
-        &root.join("box.gltf"),
-        &generator::import::ImportOptions::default(),
-    )
-    .expect("asset");
-    let object = ObjectToExport {
-        object_id: 0,
-        object: imported.object,
-        source: Source::Asset { path: "box.gltf".into() },
-        surfaces: imported.surfaces,
-    };
-    let config = RenderConfig {
-        width: 120,
-        height: 90,
-        views: 6,
-        placement: generator::multiview::cameras::Placement::Hemisphere,
-        ..RenderConfig::default()
-    };
-    let job = RenderJob::new(&config, 0, object, None, Layout::Native).expect("job");
-    assert_eq!(
-        job.appearance.asset_materials,
-        vec![vec!["red".to_string()], vec!["checker".to_string()]]
-    );
-    let (mut body, mut lid) = (0, 0);
-    for view in 0..6 {
-        let images = job.view(&config, 0, view);
-        for (rgb, part) in images.rgb.iter().zip(&images.part) {
-            match part {
-                Some(0) => {
-                    assert!(
-                        rgb[0] > 3.0 * rgb[1] && rgb[0] > 3.0 * rgb[2],
-                        "the body is red: {rgb:?}"
-                    );
-                    body += 1;
-                }
-                Some(_) => {
-                    assert!(
-                        rgb[2] > 3.0 * rgb[0] && rgb[2] > 3.0 * rgb[1],
-                        "the lid is the blue texel: {rgb:?}"
-                    );
-                    lid += 1;
-                }
-                None => {}
-            }
-        }
-    }
-    assert!(body > 500 && lid > 200, "{body} body and {lid} lid pixels");
+    assert_red_body_and_blue_lid(root, "box.gltf");
 }

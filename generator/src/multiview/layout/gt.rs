@@ -96,13 +96,8 @@ pub fn object_truth(job: &RenderJob, frame: &WorldFrame, folder: &str) -> Object
     let joints = part_joints(job)
         .iter()
         .map(|j| {
-            let axis = frame.direction(&Vector3::from(j.axis[0]));
-            let pivot = frame.point(&Point3::from(j.pivot[0]));
-            let change = j.value[1] - j.value[0];
-            let state = match j.kind {
-                JointKind::Revolute => change,
-                JointKind::Prismatic => change * frame.scale,
-            };
+            let (pivot, axis, [start, end]) = in_world(frame, j);
+            let state = end - start;
             TrueJoint {
                 name: j.name.clone(),
                 part: j.part,
@@ -157,15 +152,25 @@ pub fn part_joints(job: &RenderJob) -> Vec<JointStates> {
     joints
 }
 
-/// One `trans_info` entry: the joint's axis in state 0 and its values in states 0 and 1.
+/// A joint's pivot and axis in state 0 and its values in states 0 and 1, in the world:
+/// radians, or world units for a prismatic joint.
+fn in_world(frame: &WorldFrame, joint: &JointStates) -> (Point3, Vector3, [Real; 2]) {
+    let pivot = frame.point(&Point3::from(joint.pivot[0]));
+    let axis = frame.direction(&Vector3::from(joint.axis[0]));
+    let unit = match joint.kind {
+        JointKind::Revolute => 1.0,
+        JointKind::Prismatic => frame.scale,
+    };
+    (pivot, axis, [joint.value[0] * unit, joint.value[1] * unit])
+}
+
+/// One `trans_info` entry: the joint's axis in state 0 and its values in states 0 and 1
+/// (degrees or world units).
 pub fn trans_entry(frame: &WorldFrame, joint: &JointStates) -> Value {
-    let o = frame.point(&Point3::from(joint.pivot[0]));
-    let d = frame.direction(&Vector3::from(joint.axis[0]));
+    let (o, d, [l, r]) = in_world(frame, joint);
     let (name, l, r) = match joint.kind {
-        JointKind::Revolute => ("rotate", joint.value[0].to_degrees(), joint.value[1].to_degrees()),
-        JointKind::Prismatic => {
-            ("translate", joint.value[0] * frame.scale, joint.value[1] * frame.scale)
-        }
+        JointKind::Revolute => ("rotate", l.to_degrees(), r.to_degrees()),
+        JointKind::Prismatic => ("translate", l, r),
     };
     json!({
         "type": name,
