@@ -46,7 +46,7 @@ fn round_trip(config: &GeneratorConfig, index: u32) -> (ArticulatedObject, Artic
         source: Source::BuiltIn { split: "test".into() },
         surfaces: Vec::new(),
     };
-    let written = write_object(config, &item, dir.path()).expect("exported");
+    let written = write_object(config, &item, dir.path(), &Default::default()).expect("exported");
     let urdf = dir.path().join(&written.folder).join("mobility.urdf");
     let imported = load_asset(&urdf, &ImportOptions::default())
         .unwrap_or_else(|e| panic!("{}: {e}", urdf.display()))
@@ -150,7 +150,7 @@ fn link_and_joint_names_follow_the_layout() {
         source: Source::Asset { path: "x".into() },
         surfaces: Vec::new(),
     };
-    let written = write_object(&config, &item, dir.path()).expect("exported");
+    let written = write_object(&config, &item, dir.path(), &Default::default()).expect("exported");
     assert_eq!(written.folder, "000007_folding_table");
     let folder = dir.path().join(&written.folder);
     for file in ["mobility.urdf", "mobility_v2.json", "meta.json", "states.json"] {
@@ -179,7 +179,7 @@ fn a_non_empty_output_folder_is_refused_and_left_as_it_was() {
     let out = dir.path().join("objects");
     std::fs::create_dir(&out).expect("mkdir");
     std::fs::write(out.join("notes.txt"), "mine").expect("write");
-    let refused = export_objects(&config, &objects, &out, false, |_| {});
+    let refused = export_objects(&config, &objects, &out, false, &Default::default(), |_| {});
     assert!(matches!(
         refused,
         Err(generator::export::objects::ExportError::Output(OutputError::NotEmpty { .. }))
@@ -187,13 +187,13 @@ fn a_non_empty_output_folder_is_refused_and_left_as_it_was() {
     let left: Vec<_> = std::fs::read_dir(&out).expect("list").collect();
     assert_eq!(left.len(), 1);
     assert_eq!(std::fs::read_to_string(out.join("notes.txt")).expect("kept"), "mine");
-    let written = export_objects(&config, &objects, &out, true, |_| {}).expect("forced");
+    let written = export_objects(&config, &objects, &out, true, &Default::default(), |_| {}).expect("forced");
     assert_eq!(written.len(), 2);
     assert!(!out.join("notes.txt").exists());
     assert!(out.join("000001_laptop/mobility.urdf").is_file());
     // Byte-identical when exported again.
     let again = dir.path().join("again");
-    export_objects(&config, &objects, &again, false, |_| {}).expect("export");
+    export_objects(&config, &objects, &again, false, &Default::default(), |_| {}).expect("export");
     for file in ["000000_laptop/mobility.urdf", "000001_laptop/states.json", "objects.json"] {
         assert_eq!(
             std::fs::read(out.join(file)).expect("a"),
@@ -221,7 +221,7 @@ fn exported_user_assets_read_back_into_the_same_pairs() {
             source: Source::Asset { path: asset.into() },
             surfaces: Vec::new(),
         };
-        let written = write_object(&config, &item, dir.path()).expect("exported");
+        let written = write_object(&config, &item, dir.path(), &Default::default()).expect("exported");
         let urdf = dir.path().join(&written.folder).join("mobility.urdf");
         let read_back = load_asset(&urdf, &ImportOptions::default()).expect("reads back").object;
         assert_eq!(read_back.joints, original.joints, "{asset}");

@@ -96,3 +96,37 @@ def sets_dir(tmp_path_factory: pytest.TempPathFactory) -> Path:
     args = ["--kind", "sets", "--views", "4", "--mode", "mixed", "-n", "3", "-p", "64"]
     run_cargo("run", "-q", "-p", "generator", "--", *args, "--seed", "7", "--out", str(out))
     return out
+
+
+EXPORT_SEED = 3
+"""The seed of the exported objects (`exported`, `kinematics`)."""
+
+
+@pytest.fixture(scope="session")
+def categories() -> List[str]:
+    """Every built-in category of every split (`generator --list-categories`)."""
+    listing = run_cargo("run", "-q", "-p", "generator", "--", "--list-categories")
+    return [line.split()[0] for line in listing.splitlines() if line.strip()]
+
+
+@pytest.fixture(scope="session")
+def exported(tmp_path_factory: pytest.TempPathFactory, categories: List[str]) -> Path:
+    """One object of every category, exported (URDF, MJCF, USD, collision hulls)."""
+    out = tmp_path_factory.mktemp("objects") / "objects"
+    run_cargo(
+        "run", "-q", "-p", "generator", "--", "export-objects", "--seed", str(EXPORT_SEED),
+        "--categories", ",".join(categories), "-n", str(len(categories)), "--out", str(out),
+    )
+    return out
+
+
+@pytest.fixture(scope="session")
+def kinematics(categories: List[str]) -> List[Dict[str, Any]]:
+    """The generator's forward kinematics of `exported` (`generator/examples/
+    kinematics_json.rs`): every link's transform at several joint configurations."""
+    text = run_cargo(
+        "run", "-q", "-p", "generator", "--example", "kinematics_json", "--",
+        "--seed", str(EXPORT_SEED), "--categories", ",".join(categories),
+        "-n", str(len(categories)), "--states", "2",
+    )
+    return json.loads(text)

@@ -20,39 +20,11 @@ import pytest
 import trimesh  # the `test` extra installs trimesh and yourdfpy
 import yourdfpy
 
-from conftest import run_cargo
+from conftest import EXPORT_SEED, run_cargo
 from part_induction import open_dataset
 
 
-SEED = 3
-
-
-@pytest.fixture(scope="module")
-def categories() -> List[str]:
-    """Every built-in category of every split (`generator --list-categories`)."""
-    listing = run_cargo("run", "-q", "-p", "generator", "--", "--list-categories")
-    return [line.split()[0] for line in listing.splitlines() if line.strip()]
-
-
-@pytest.fixture(scope="module")
-def exported(tmp_path_factory: pytest.TempPathFactory, categories: List[str]) -> Path:
-    """One object of every category."""
-    out = tmp_path_factory.mktemp("objects") / "objects"
-    run_cargo(
-        "run", "-q", "-p", "generator", "--", "export-objects", "--seed", str(SEED),
-        "--categories", ",".join(categories), "-n", str(len(categories)), "--out", str(out),
-    )
-    return out
-
-
-@pytest.fixture(scope="module")
-def kinematics(categories: List[str]) -> List[Dict[str, Any]]:
-    text = run_cargo(
-        "run", "-q", "-p", "generator", "--example", "kinematics_json", "--",
-        "--seed", str(SEED), "--categories", ",".join(categories),
-        "-n", str(len(categories)), "--states", "2",
-    )
-    return json.loads(text)
+SEED = EXPORT_SEED
 
 
 def load(urdf: Path) -> "yourdfpy.URDF":

@@ -1,5 +1,6 @@
 //! An articulated object as PartNet-Mobility files: `mobility.urdf`, one OBJ mesh per link
-//! and the `mobility_v2.json` joint annotation.
+//! (`textured_objs/`), its convex collision hulls (`collision/`) and the `mobility_v2.json`
+//! joint annotation.
 //!
 //! The layout follows PartNet-Mobility (SAPIEN): a `base` link without geometry, welded by a
 //! fixed joint to `link_0` (the object's root part); `link_i` is the object's link `i`, its frame
@@ -20,15 +21,13 @@ use pairs::math::{Point3, Real};
 use pairs::JointKind;
 use serde_json::{json, Value};
 
+use super::inertia::Inertial;
+use super::physics::LinkPhysics;
 use crate::mesh::Mesh;
 use crate::objects::{ArticulatedObject, Joint};
 
 /// The URDF name of the empty link the object hangs from.
 pub const BASE_LINK: &str = "base";
-
-/// Mass given to every link (kilograms), for simulators that need one; the generator has
-/// no notion of mass, so the inertia is that of the link's bounding box at this mass.
-const LINK_MASS: f64 = 1.0;
 
 /// URDF name of the object's link `index`.
 pub fn link_name(index: usize) -> String {
@@ -38,6 +37,11 @@ pub fn link_name(index: usize) -> String {
 /// Path of link `index`'s mesh, relative to the object folder.
 pub fn mesh_path(index: usize) -> String {
     format!("textured_objs/{}.obj", link_name(index))
+}
+
+/// Path of link `index`'s collision hull `hull`, relative to the object folder.
+pub fn hull_path(index: usize, hull: usize) -> String {
+    format!("collision/{}_hull_{hull}.obj", link_name(index))
 }
 
 /// The name of the fixed joint from `base` to `link_0`: `base_joint`, with `_` added until
@@ -62,8 +66,9 @@ pub fn link_origins(object: &ArticulatedObject) -> Vec<Point3> {
     origins
 }
 
-/// The text of `mobility.urdf`.
-pub fn urdf_text(object: &ArticulatedObject) -> String {
+/// The text of `mobility.urdf`; `physics` holds each link's collision hulls and mass
+/// properties ([`super::physics::object_physics`]).
+pub fn urdf_text(object: &ArticulatedObject, physics: &[LinkPhysics]) -> String {
     let origins = link_origins(object);
     let mut out = String::new();
     let _ = writeln!(out, r#"<?xml version="1.0"?>"#);
@@ -74,14 +79,22 @@ pub fn urdf_text(object: &ArticulatedObject) -> String {
         out,
         r#"  <link name="{BASE_LINK}"><inertial><origin xyz="0 0 0" rpy="0 0 0"/><mass value="0.001"/><inertia ixx="1e-9" ixy="0" ixz="0" iyy="1e-9" iyz="0" izz="1e-9"/></inertial></link>"#
     );
-    for (i, link) in object.links.iter().enumerate() {
+    for i in 0..object.links.len() {
         let _ = writeln!(out, r#"  <link name="{}">"#, link_name(i));
         let back = origins[i].coords.map(|c| 0.0 - f64::from(c));
         let origin = format!(r#"<origin xyz="{}" rpy="0 0 0"/>"#, triple(back.into()));
         let geometry = format!(r#"<geometry><mesh filename="{}"/></geometry>"#, mesh_path(i));
         let _ = writeln!(out, "    <visual>{origin}{geometry}</visual>");
-        let _ = writeln!(out, "    <collision>{origin}{geometry}</collision>");
-        let _ = write!(out, "{}", inertial(&link.mesh, &origins[i]));
+        let Some(physics) = physics.get(i) else {
+            let _ = writeln!(out, "  </link>");
+            continue;
+        };
+        for k in 0..physics.collision.hulls.len() {
+            let geometry =
+                format!(r#"<geometry><mesh filename="{}"/></geometry>"#, hull_path(i, k));
+            let _ = writeln!(out, "    <collision>{origin}{geometry}</collision>");
+        }
+        let _ = write!(out, "{}", inertial(&physics.inertial, &origins[i]));
         let _ = writeln!(out, "  </link>");
     }
     let base_joint = base_joint_name(object);
@@ -129,21 +142,22 @@ pub fn urdf_text(object: &ArticulatedObject) -> String {
     out
 }
 
-/// The `<inertial>` of a link: [`LINK_MASS`] spread over its rest-frame bounding box,
-/// placed in the link frame whose origin is `origin`.
-fn inertial(mesh: &Mesh, origin: &Point3) -> String {
-    let (lo, hi) = bounds(mesh.vertices.iter());
-    let size: [f64; 3] = std::array::from_fn(|k| f64::from(hi[k]) - f64::from(lo[k]));
-    let centre: [f64; 3] =
-        std::array::from_fn(|k| 0.5 * (f64::from(lo[k]) + f64::from(hi[k])) - f64::from(origin[k]));
-    let i = |a: f64, b: f64| LINK_MASS * (a * a + b * b) / 12.0;
+/// The `<inertial>` of a link with mass properties `m`, in the link frame whose origin is
+/// `origin`.
+fn inertial(m: &Inertial, origin: &Point3) -> String {
+    let com: [f64; 3] = std::array::from_fn(|k| f64::from(m.com[k]) - f64::from(origin[k]));
+    let t = m.tensor();
     format!(
-        "    <inertial><origin xyz=\"{}\" rpy=\"0 0 0\"/><mass value=\"{LINK_MASS}\"/>\
-         <inertia ixx=\"{}\" ixy=\"0\" ixz=\"0\" iyy=\"{}\" iyz=\"0\" izz=\"{}\"/></inertial>\n",
-        triple(centre),
-        i(size[1], size[2]).max(1e-9),
-        i(size[0], size[2]).max(1e-9),
-        i(size[0], size[1]).max(1e-9),
+        "    <inertial><origin xyz=\"{}\" rpy=\"0 0 0\"/><mass value=\"{}\"/>\
+         <inertia ixx=\"{}\" ixy=\"{}\" ixz=\"{}\" iyy=\"{}\" iyz=\"{}\" izz=\"{}\"/></inertial>\n",
+        triple(com),
+        m.mass,
+        t[0][0],
+        t[0][1],
+        t[0][2],
+        t[1][1],
+        t[1][2],
+        t[2][2],
     )
 }
 
@@ -235,17 +249,17 @@ fn joint_data(joint: &Joint) -> Value {
     }
 }
 
-fn widen(v: [Real; 3]) -> [f64; 3] {
+pub(crate) fn widen(v: [Real; 3]) -> [f64; 3] {
     v.map(f64::from)
 }
 
 /// Three numbers separated by spaces, each printed so that parsing gives it back exactly.
-fn triple(v: [f64; 3]) -> String {
+pub(crate) fn triple(v: [f64; 3]) -> String {
     format!("{} {} {}", v[0], v[1], v[2])
 }
 
 /// `text` with the five XML special characters escaped, for attribute values.
-fn escape(text: &str) -> String {
+pub(crate) fn escape(text: &str) -> String {
     let mut out = String::with_capacity(text.len());
     for c in text.chars() {
         match c {

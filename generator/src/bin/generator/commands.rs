@@ -6,7 +6,13 @@ use std::path::PathBuf;
 use anyhow::{bail, Context, Result};
 use generator::asset_dataset::{load_assets, relative};
 use generator::export::formats::{export_dataset, Format};
-use generator::export::objects::{built_in_objects, export_objects, ObjectToExport, Source};
+use generator::export::collision::Budget;
+use generator::export::inertia::DEFAULT_DENSITY;
+use generator::export::objects::{
+    built_in_objects, export_objects, ExportOptions, ExportedObject, ObjectFormat,
+    ObjectToExport, Source,
+};
+use generator::export::physics::PhysicsOptions;
 use generator::shard::merge_shards;
 use indicatif::{ProgressBar, ProgressStyle};
 use pairs::dataset::Manifest;
@@ -15,28 +21,117 @@ use generator::config::GeneratorConfig;
 
 use crate::Selection;
 
+/// The simulator settings of `export-objects`.
+#[derive(Debug, clap::Args)]
+pub(crate) struct PhysicsArgs {
+    /// Descriptions to write, comma-separated: urdf (PyBullet, SAPIEN, Isaac's importer),
+    /// mjcf (MuJoCo), usd (UsdPhysics .usda: Isaac Sim).
+    #[arg(long, value_delimiter = ',', default_value = "urdf,mjcf,usd", value_parser = parse_object_format)]
+    format: Vec<ObjectFormat>,
+    /// Density of every link, kilograms per cubic object unit (objects are about one unit
+    /// across); masses and inertias come from the meshes' volumes.
+    #[arg(long, default_value_t = DEFAULT_DENSITY)]
+    density: f64,
+    /// Convex collision hulls per link at most (the cheapest to merge are merged).
+    #[arg(long, default_value_t = Budget::default().max_hulls)]
+    max_hulls: usize,
+    /// Vertices per collision hull at most.
+    #[arg(long, default_value_t = Budget::default().max_vertices)]
+    max_hull_vertices: usize,
+}
+
+impl PhysicsArgs {
+    fn options(&self) -> Result<ExportOptions> {
+        if !(self.density.is_finite() && self.density > 0.0) {
+            bail!("--density must be a positive number, not {}", self.density);
+        }
+        if self.max_hulls == 0 {
+            bail!("--max-hulls must be at least 1");
+        }
+        if self.max_hull_vertices < 4 {
+            bail!("--max-hull-vertices must be at least 4 (a tetrahedron)");
+        }
+        let mut formats = self.format.clone();
+        formats.dedup();
+        Ok(ExportOptions {
+            formats,
+            physics: PhysicsOptions {
+                density: self.density,
+                budget: Budget { max_hulls: self.max_hulls, max_vertices: self.max_hull_vertices },
+            },
+        })
+    }
+}
+
+fn parse_object_format(s: &str) -> Result<ObjectFormat, String> {
+    s.parse()
+}
+
 /// `generator export-objects`.
 pub(crate) fn export_objects_command(
     selection: &Selection,
     out: &std::path::Path,
     force: bool,
+    physics: &PhysicsArgs,
 ) -> Result<()> {
+    let options = physics.options()?;
     let config = selection.config()?;
     config.validate().context("checking the config")?;
     let started = std::time::Instant::now();
     let objects = selected_objects(selection, &config, "exported")?;
     let bar = progress_bar(objects.len() as u64, "objects");
     bar.set_message(format!("exporting {}", out.display()));
-    let written = export_objects(&config, &objects, out, force, |n| bar.set_position(n))
-        .with_context(|| format!("exporting objects to {}", out.display()))?;
+    let written =
+        export_objects(&config, &objects, out, force, &options, |n| bar.set_position(n))
+            .with_context(|| format!("exporting objects to {}", out.display()))?;
     bar.finish_and_clear();
+    let formats: Vec<&str> = options.formats.iter().map(|f| f.as_str()).collect();
     println!(
-        "wrote {} objects to {} in {:.2} s",
+        "wrote {} objects ({}) to {} in {:.2} s",
         written.len(),
+        formats.join(", "),
         out.display(),
         started.elapsed().as_secs_f64()
     );
+    report_collision(&written, &options);
     Ok(())
+}
+
+/// The collision and mass summary of an export, and every fallback taken.
+fn report_collision(written: &[ExportedObject], options: &ExportOptions) {
+    let hulls: usize = written.iter().map(|o| o.collision.hulls).sum();
+    let links: usize = written.iter().map(|o| o.links).sum();
+    let worst = written
+        .iter()
+        .max_by(|a, b| a.collision.max_hausdorff.total_cmp(&b.collision.max_hausdorff));
+    let ratios: Vec<f64> = written.iter().map(|o| o.collision.volume_ratio).collect();
+    let (lo, hi) = ratios
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), &r| (lo.min(r), hi.max(r)));
+    let budget = options.physics.budget;
+    println!(
+        "collision: {hulls} convex hulls for {links} links (at most {} per link, {} vertices per \
+         hull); hull volume / visual volume {lo:.3}-{hi:.3} per object",
+        budget.max_hulls, budget.max_vertices
+    );
+    if let Some(w) = worst {
+        println!(
+            "  largest Hausdorff distance between a link and its hulls: {:.4} ({})",
+            w.collision.max_hausdorff, w.folder
+        );
+    }
+    let hull_massed: usize = written.iter().map(|o| o.collision.links_massed_by_hulls).sum();
+    println!(
+        "mass: density {} kg per cubic unit; {} links massed from their closed meshes, {hull_massed} \
+         from their hulls (open meshes)",
+        options.physics.density,
+        links - hull_massed
+    );
+    for o in written {
+        for note in &o.notes {
+            eprintln!("  note: {}/{note}", o.folder);
+        }
+    }
 }
 
 /// The objects a selection names: the built-in objects of the config, or every asset

@@ -165,10 +165,12 @@ enum Command {
         #[arg(long)]
         force: bool,
     },
-    /// Export objects as simulation-ready folders in the PartNet-Mobility layout
-    /// (mobility.urdf, textured_objs/*.obj, mobility_v2.json, meta.json, states.json), one
-    /// per object, from the built-in categories or from --assets; `generator --assets <out>`
-    /// with the same settings makes the same pairs (docs/FORMAT.md, "Exported objects").
+    /// Export objects as simulation-ready folders in the PartNet-Mobility layout, one per
+    /// object, from the built-in categories or from --assets: mobility.urdf, mobility.xml
+    /// (MJCF) and mobility.usda (USD), textured_objs/*.obj, convex collision hulls in
+    /// collision/*.obj, masses from the geometry, mobility_v2.json, meta.json, states.json;
+    /// `generator --assets <out>` with the same settings makes the same pairs
+    /// (docs/SIMULATORS.md, docs/FORMAT.md "Exported objects").
     #[command(after_help = EXPORT_OBJECTS_EXAMPLES)]
     ExportObjects {
         #[command(flatten)]
@@ -182,6 +184,8 @@ enum Command {
         /// Worker threads [default: all cores]; the output does not depend on it.
         #[arg(short = 'j', long)]
         threads: Option<usize>,
+        #[command(flatten)]
+        physics: commands::PhysicsArgs,
     },
     /// Render objects in two or more articulation states from V calibrated cameras for
     /// image-based methods: RGB (materials and light, never the part), depth, part-label
@@ -219,6 +223,8 @@ const EXPORT_OBJECTS_EXAMPLES: &str = "Examples:
   generator export-objects -n 26 --out objects/            one object of every test category
   generator export-objects --split train -n 200 --out o/   200 training objects
   generator export-objects --assets models/ --out o/       your assets in the same layout
+  generator export-objects -n 26 --format mjcf --out o/    MJCF only (plus meshes and hulls)
+  generator export-objects -n 26 --max-hulls 8 --density 700 --out o/
   generator --assets objects/ -n 26 --kind sf2p            pairs of the exported objects";
 
 fn parse_format(s: &str) -> Result<Format, String> {
@@ -333,9 +339,9 @@ fn main() {
 fn run(args: Args) -> Result<()> {
     match &args.command {
         Some(Command::Merge { shards, out, force }) => return merge(shards, out, *force),
-        Some(Command::ExportObjects { selection, out, force, threads }) => {
+        Some(Command::ExportObjects { selection, out, force, threads, physics }) => {
             set_threads(*threads)?;
-            return export_objects_command(selection, out, *force);
+            return export_objects_command(selection, out, *force, physics);
         }
         Some(Command::Render { args, threads }) => {
             set_threads(*threads)?;
