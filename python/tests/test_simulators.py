@@ -4,7 +4,8 @@ MuJoCo loads `mobility.xml`, PyBullet and SAPIEN load `mobility.urdf`, usd-core 
 
 - it loads without a warning;
 - forward kinematics at several joint configurations agrees with the generator's
-  (`generator/examples/kinematics_json.rs`) to 1e-5;
+  (`generator/examples/kinematics_json.rs`) to 1e-5 (plus a relative 1e-6 for the 46 m
+  windmill: the generator's kinematics is single precision);
 - at rest (each state of `states.json`) no two links that no joint connects are in contact;
 - with a fixed base and gravity, one simulated second moves no joint outside its limits
   (beyond the simulator's constraint slack) and produces no NaN;
@@ -26,6 +27,7 @@ import json
 import os
 import sys
 import tempfile
+import warnings
 import xml.etree.ElementTree as ET
 from pathlib import Path
 from typing import Any, Dict, Iterator, List, Optional, Tuple
@@ -58,6 +60,7 @@ CONTAINERS = {
 }
 FK_TOLERANCE = 1e-5
 PENETRATION = 1e-5  # deeper than this is a contact (touching faces meet at about 1e-8)
+PYBULLET_MARGIN = 1e-3  # the collision margin PyBullet gives each convex mesh shape
 
 
 @contextlib.contextmanager
@@ -102,7 +105,11 @@ def mimic_followers(obj: Dict[str, Any]) -> set:
 
 
 def assert_pose(actual: np.ndarray, expected: Any, what: str) -> None:
-    np.testing.assert_allclose(actual, np.asarray(expected), atol=FK_TOLERANCE, err_msg=what)
+    """To FK_TOLERANCE, plus a relative 1e-6: the generator's kinematics and SAPIEN's poses
+    are single precision, and the windmill's hub is 46 m up (1e-5 off there)."""
+    np.testing.assert_allclose(
+        actual, np.asarray(expected), atol=FK_TOLERANCE, rtol=1e-6, err_msg=what
+    )
 
 
 # ---------------------------------------------------------------------------------- MuJoCo
@@ -448,3 +455,315 @@ def test_a_probe_rests_inside_every_opened_container(
             assert np.linalg.norm(centre - at) > radius, f"{obj['folder']} {link}: it stayed"
             checked.append((obj["category"], link))
     assert {c for c, _ in checked} == set(CONTAINERS)
+
+
+# -------------------------------------------------------------------------------- PyBullet
+
+
+@pytest.fixture(scope="module")
+def bullet() -> Iterator[Any]:
+    """A headless PyBullet client."""
+    client = pybullet.connect(pybullet.DIRECT)
+    yield client
+    pybullet.disconnect(client)
+
+
+def pb_load(client: int, folder: Path) -> Tuple[int, Dict[str, int], str]:
+    """The object (fixed base), its joints' indices by name (the index of a joint is that
+    of its child link), and what loading printed."""
+    pybullet.resetSimulation(physicsClientId=client)
+    with captured_output() as printed:
+        body = pybullet.loadURDF(
+            str(folder / "mobility.urdf"), useFixedBase=True,
+            flags=pybullet.URDF_USE_INERTIA_FROM_FILE, physicsClientId=client,
+        )
+    joints = {}
+    for i in range(pybullet.getNumJoints(body, physicsClientId=client)):
+        info = pybullet.getJointInfo(body, i, physicsClientId=client)
+        joints[info[1].decode()] = i
+    return body, joints, printed[0]
+
+
+def pb_link_index(client: int, body: int, link: str) -> int:
+    if link == "base":
+        return -1
+    for i in range(pybullet.getNumJoints(body, physicsClientId=client)):
+        if pybullet.getJointInfo(body, i, physicsClientId=client)[12].decode() == link:
+            return i
+    raise KeyError(link)
+
+
+def pb_set(client: int, body: int, joints: Dict[str, int], values: Dict[str, float]) -> None:
+    for name, value in values.items():
+        pybullet.resetJointState(body, joints[name], value, 0.0, physicsClientId=client)
+
+
+def pb_link_transform(client: int, body: int, index: int) -> np.ndarray:
+    state = pybullet.getLinkState(body, index, computeForwardKinematics=True,
+                                  physicsClientId=client)  # fmt: skip
+    t = np.eye(4)
+    t[:3, :3] = np.asarray(pybullet.getMatrixFromQuaternion(state[5])).reshape(3, 3)
+    t[:3, 3] = state[4]
+    return t
+
+
+def test_pybullet_loads_every_category_with_matching_kinematics(
+    bullet: int, exported: Path, kinematics: List[Dict[str, Any]]
+) -> None:
+    for obj in kinematics:
+        folder = exported / obj["folder"]
+        body, joints, printed = pb_load(bullet, folder)
+        assert printed.strip() == "", f"{obj['folder']}: {printed}"
+        meta = json.loads((folder / "meta.json").read_text())
+        for link, physics in meta["link_physics"].items():
+            index = pb_link_index(bullet, body, link)
+            mass = pybullet.getDynamicsInfo(body, index, physicsClientId=bullet)[0]
+            assert mass == pytest.approx(physics["mass"], rel=1e-6), f"{obj['folder']} {link}"
+            shapes = pybullet.getCollisionShapeData(body, index, physicsClientId=bullet)
+            assert len(shapes) == physics["hulls"], f"{obj['folder']} {link}: collision shapes"
+        for joint in obj["joints"]:
+            info = pybullet.getJointInfo(body, joints[joint["name"]], physicsClientId=bullet)
+            kind = {"revolute": pybullet.JOINT_REVOLUTE, "prismatic": pybullet.JOINT_PRISMATIC}
+            assert info[2] == kind[joint["type"]]
+            np.testing.assert_allclose(info[8:10], [joint["lower"], joint["upper"]], atol=1e-6)
+            # PyBullet gives the axis in the child's inertial frame (principal axes, as Bullet
+            # diagonalises the inertia): into the link frame.
+            inertial = pybullet.getDynamicsInfo(body, joints[joint["name"]], physicsClientId=bullet)
+            rotation = np.asarray(pybullet.getMatrixFromQuaternion(inertial[4])).reshape(3, 3)
+            np.testing.assert_allclose(rotation @ info[13], joint["axis"], atol=1e-5)
+        for state in obj["states"]:
+            pb_set(bullet, body, joints, state["values"])
+            for link, expected in state["links"].items():
+                index = pb_link_index(bullet, body, link)
+                assert_pose(pb_link_transform(bullet, body, index), expected["transform"],
+                            f"{obj['folder']} {link}")  # fmt: skip
+
+
+def test_pybullet_contacts_gravity_and_position_control(
+    bullet: int, exported: Path, kinematics: List[Dict[str, Any]]
+) -> None:
+    """At rest no unjoined links touch; one second under gravity keeps every joint in its
+    limits; position motors take the object from its first state to its last."""
+    for obj in kinematics:
+        folder = exported / obj["folder"]
+        body, joints, _ = pb_load(bullet, folder)
+        links = {pb_link_index(bullet, body, f"link_{i}"): f"link_{i}"
+                 for i in range(len(obj["joints"]) + 1)}  # fmt: skip
+        joined = adjacent(obj)
+        drawn = states(folder)
+        for k, values in enumerate(drawn):
+            pb_set(bullet, body, joints, values)
+            for a in links:
+                for b in links:
+                    if a >= b or frozenset((links[a], links[b])) in joined:
+                        continue
+                    close = pybullet.getClosestPoints(
+                        body, body, 0.0, linkIndexA=a, linkIndexB=b, physicsClientId=bullet
+                    )
+                    # PyBullet's distances include each convex shape's 1 mm collision margin.
+                    deepest = min((c[8] for c in close), default=0.0)
+                    assert deepest > -PENETRATION - 2 * PYBULLET_MARGIN, (
+                        f"{obj['folder']} state {k}: {links[a]} and {links[b]} overlap by {-deepest}"
+                    )
+        # Gravity, every joint free (PyBullet holds joints with velocity motors by default).
+        # PyBullet caps the force of a joint limit (100 N s per step by default), too little
+        # for the excavator's 6 t boom: raised, as docs/SIMULATORS.md tells users to.
+        pybullet.setGravity(*GRAVITY, physicsClientId=bullet)
+        pb_set(bullet, body, joints, drawn[0])
+        for i in joints.values():
+            pybullet.setJointMotorControl2(body, i, pybullet.VELOCITY_CONTROL, force=0.0,
+                                           physicsClientId=bullet)  # fmt: skip
+            pybullet.changeDynamics(body, i, jointLimitForce=1e8, physicsClientId=bullet)
+        for _ in range(240):
+            pybullet.stepSimulation(physicsClientId=bullet)
+        for joint in obj["joints"]:
+            q = pybullet.getJointState(body, joints[joint["name"]], physicsClientId=bullet)[0]
+            slack = 0.02 * (joint["upper"] - joint["lower"]) + 1e-4
+            assert np.isfinite(q), f"{obj['folder']} {joint['name']}"
+            assert joint["lower"] - slack <= q <= joint["upper"] + slack, (
+                f"{obj['folder']} {joint['name']}: {q} after 1 s"
+            )
+        # Position control to the last state (PyBullet ignores URDF mimic tags: every joint
+        # gets its own motor, the followers' targets satisfying their coupling).
+        pb_set(bullet, body, joints, drawn[0])
+        for name, i in joints.items():
+            if name in drawn[-1]:
+                pybullet.setJointMotorControl2(
+                    body, i, pybullet.POSITION_CONTROL, targetPosition=drawn[-1][name],
+                    force=1e12, positionGain=0.5, velocityGain=1.0, physicsClientId=bullet,
+                )
+        for _ in range(480):
+            pybullet.stepSimulation(physicsClientId=bullet)
+        for joint in obj["joints"]:
+            q = pybullet.getJointState(body, joints[joint["name"]], physicsClientId=bullet)[0]
+            tolerance = 0.01 * (joint["upper"] - joint["lower"]) + 1e-4
+            assert abs(q - drawn[-1][joint["name"]]) <= tolerance, (
+                f"{obj['folder']} {joint['name']}: {q} for {drawn[-1][joint['name']]}"
+            )
+        pybullet.setGravity(0, 0, 0, physicsClientId=bullet)
+
+
+# ------------------------------------------------------------------------------------- USD
+
+
+def gf_matrix(position: Any, orientation: Any) -> np.ndarray:
+    """A pose from a Gf position and quaternion (column-vector convention)."""
+    t = np.eye(4)
+    t[:3, :3] = np.asarray(Gf.Matrix3d(Gf.Rotation(Gf.Quatd(orientation)))).T
+    t[:3, 3] = [float(x) for x in position]
+    return t
+
+
+def joint_motion(kind: str, value: float) -> np.ndarray:
+    """Motion about or along the joint frame's X axis."""
+    t = np.eye(4)
+    if kind == "revolute":
+        c, s = np.cos(value), np.sin(value)
+        t[1:3, 1:3] = [[c, -s], [s, c]]
+    else:
+        t[0, 3] = value
+    return t
+
+
+def test_usd_parses_with_usdphysics_and_agrees_with_the_generator(
+    exported: Path, kinematics: List[Dict[str, Any]]
+) -> None:
+    """UsdPhysics' own parser (the one Isaac's PhysX plug-in builds on) reads every object:
+    one articulation, a rigid body per link with its mass, its hulls as convex colliders,
+    the joints with the generator's names, types, axes and limits; forward kinematics
+    composed from the parsed joint frames is the generator's."""
+    for obj in kinematics:
+        folder = exported / obj["folder"]
+        with captured_output() as printed:
+            stage = Usd.Stage.Open(str(folder / "mobility.usda"))
+            parsed = UsdPhysics.UsdPhysicsLoadStageFromPrimRange(stage, ["/"])
+        assert printed[0].strip() == "", f"{obj['folder']}: {printed[0]}"
+        assert UsdGeomUpAxis(stage) == "Y"
+        found = {str(k).split(".")[-1]: v for k, v in parsed.items()}
+        assert len(found["Articulation"][0]) == 1 and len(found["Scene"][0]) == 1
+        meta = json.loads((folder / "meta.json").read_text())
+        root = stage.GetDefaultPrim().GetPath()
+        bodies = {str(p).split("/")[-1] for p in found["RigidBody"][0]}
+        assert bodies == set(meta["link_physics"]), obj["folder"]
+        for link, physics in meta["link_physics"].items():
+            prim = stage.GetPrimAtPath(root.AppendChild(link))
+            mass = UsdPhysics.MassAPI(prim).GetMassAttr().Get()
+            assert mass == pytest.approx(physics["mass"], rel=1e-6), f"{obj['folder']} {link}"
+        hulls = [p for p in found["MeshShape"][0]]
+        assert len(hulls) == sum(p["hulls"] for p in meta["link_physics"].values())
+        for desc in found["MeshShape"][1]:
+            assert desc.approximation == UsdPhysics.Tokens.convexHull
+        descs: Dict[str, Tuple[str, Any]] = {}
+        for kind in ["RevoluteJoint", "PrismaticJoint"]:
+            for path, desc in zip(*found.get(kind, ([], []))):
+                name = stage.GetPrimAtPath(path).GetAttribute("part_induction:name").Get()
+                descs[name] = ("revolute" if kind == "RevoluteJoint" else "prismatic", desc)
+        assert set(descs) == {j["name"] for j in obj["joints"]}, obj["folder"]
+        for joint in obj["joints"]:
+            kind, desc = descs[joint["name"]]
+            assert kind == joint["type"]
+            assert str(desc.body0).split("/")[-1] == joint["parent"]
+            assert str(desc.body1).split("/")[-1] == joint["child"]
+            assert desc.axis == UsdPhysics.Axis.X
+            frame = gf_matrix(desc.localPose0Position, desc.localPose0Orientation)
+            np.testing.assert_allclose(frame[:3, 0], joint["axis"], atol=1e-6)
+            scale = np.pi / 180 if kind == "revolute" else 1.0
+            np.testing.assert_allclose(
+                [desc.limit.lower * scale, desc.limit.upper * scale],
+                [joint["lower"], joint["upper"]], atol=1e-6,
+            )
+        by_child = {d[1].body1: d for d in descs.values()}
+        for state in obj["states"]:
+            world: Dict[str, np.ndarray] = {"link_0": np.eye(4)}
+
+            def pose(link: str) -> np.ndarray:
+                if link not in world:
+                    kind, desc = by_child[root.AppendChild(link)]
+                    name = next(n for n, d in descs.items() if d[1] is desc)
+                    world[link] = (
+                        pose(str(desc.body0).split("/")[-1])
+                        @ gf_matrix(desc.localPose0Position, desc.localPose0Orientation)
+                        @ joint_motion(kind, state["values"][name])
+                        @ np.linalg.inv(gf_matrix(desc.localPose1Position, desc.localPose1Orientation))
+                    )
+                return world[link]
+
+            for link, expected in state["links"].items():
+                assert_pose(pose(link), expected["transform"], f"{obj['folder']} {link}")
+
+
+def UsdGeomUpAxis(stage: Any) -> str:
+    from pxr import UsdGeom
+
+    return str(UsdGeom.GetStageUpAxis(stage))
+
+
+# ----------------------------------------------------------------------------------- SAPIEN
+
+
+def test_sapien_loads_every_category_simulates_and_drives_it(
+    exported: Path, kinematics: List[Dict[str, Any]]
+) -> None:
+    """SAPIEN 3 (PhysX) loads every URDF as an articulation with the generator's joints,
+    masses and forward kinematics; a second under gravity keeps every joint in its limits;
+    joint drives take the object from its first state to its last. There is no rendering
+    device here: the loader's visual shapes are dropped before building (the collision
+    shapes, masses and joints are what is checked)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # "Failed to find system libvulkan" on import
+        sapien = pytest.importorskip("sapien", reason="pip install sapien (the `sim` extra)")
+    config = sapien.physx.PhysxSceneConfig()
+    config.gravity = GRAVITY.tolist()
+    sapien.physx.set_scene_config(config)
+    for obj in kinematics:
+        folder = exported / obj["folder"]
+        scene = sapien.Scene([sapien.physx.PhysxCpuSystem()])
+        scene.set_timestep(1 / 240)
+        loader = scene.create_urdf_loader()
+        loader.fix_root_link = True
+        with captured_output() as printed:
+            builders, _, _ = loader.parse(str(folder / "mobility.urdf"))
+            assert len(builders) == 1, obj["folder"]
+            for link in builders[0].link_builders:
+                link.visual_records = []
+            robot = builders[0].build()
+        assert printed[0].strip() == "", f"{obj['folder']}: {printed[0]}"
+        names = [j.name for j in robot.active_joints]
+        assert set(names) == {j["name"] for j in obj["joints"]}, obj["folder"]
+        limits = dict(zip(names, robot.qlimits.tolist()))
+        for joint in obj["joints"]:
+            np.testing.assert_allclose(limits[joint["name"]], [joint["lower"], joint["upper"]],
+                                       atol=1e-6)  # fmt: skip
+        meta = json.loads((folder / "meta.json").read_text())
+        links = {link.name: link for link in robot.links}
+        for link, physics in meta["link_physics"].items():
+            assert links[link].mass == pytest.approx(physics["mass"], rel=1e-5)
+            assert len(links[link].collision_shapes) == physics["hulls"], obj["folder"]
+        for state in obj["states"]:
+            robot.set_qpos(np.array([state["values"][n] for n in names]))
+            for link, expected in state["links"].items():
+                assert_pose(links[link].entity_pose.to_transformation_matrix(),
+                            expected["transform"], f"{obj['folder']} {link}")  # fmt: skip
+        drawn = states(folder)
+        robot.set_qpos(np.array([drawn[0][n] for n in names]))
+        robot.set_qvel(np.zeros(len(names)))
+        for _ in range(240):
+            scene.step()
+        for name, q in zip(names, robot.qpos):
+            lo, hi = limits[name]
+            slack = 0.02 * (hi - lo) + 1e-4
+            assert np.isfinite(q) and lo - slack <= q <= hi + slack, f"{obj['folder']} {name}: {q}"
+        robot.set_qpos(np.array([drawn[0][n] for n in names]))
+        robot.set_qvel(np.zeros(len(names)))
+        for joint, name in zip(robot.active_joints, names):
+            inertia = max(links[joint.child_link.name].mass, 1e-6)
+            joint.set_drive_property(stiffness=1e5 * inertia, damping=1e3 * inertia)
+            joint.set_drive_target(drawn[-1][name])
+        for _ in range(480):
+            robot.set_qf(robot.compute_passive_force(gravity=True))
+            scene.step()
+        for name, q in zip(names, robot.qpos):
+            lo, hi = limits[name]
+            assert abs(q - drawn[-1][name]) <= 0.01 * (hi - lo) + 1e-4, (
+                f"{obj['folder']} {name}: {q} for {drawn[-1][name]}"
+            )
