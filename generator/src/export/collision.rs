@@ -19,9 +19,9 @@
 
 use std::collections::BTreeMap;
 
-use pairs::math::{Point3, Real};
+use pairs::math::{Point3, Real, Vector3};
 use parry3d::query::PointQuery;
-use parry3d::shape::{ConvexPolyhedron, TriMesh};
+use parry3d::shape::{TriMesh, Triangle};
 use parry3d::transformation::try_convex_hull;
 use parry3d::transformation::vhacd::{VHACDParameters, VHACD};
 use serde::Serialize;
@@ -34,6 +34,9 @@ pub const CONVEX_TOLERANCE: f64 = 0.02;
 pub const VHACD_RESOLUTION: u32 = 64;
 /// V-HACD's concavity threshold for a non-convex piece.
 pub const VHACD_CONCAVITY: Real = 0.01;
+/// Most surface samples per direction when measuring the fit (a large asset mesh is
+/// sampled at an even stride).
+pub const MAX_SAMPLES: usize = 20_000;
 /// Thickness given to a flat piece's hull, in object units (objects are about one unit
 /// across).
 pub const FLAT_THICKNESS: Real = 2e-3;
@@ -77,12 +80,58 @@ impl Hull {
     pub fn volume(&self) -> f64 {
         signed_volume(&self.vertices, &self.triangles)
     }
+
+    /// Distance from `p` to the solid hull (zero inside); see [`Solid`].
+    pub fn distance(&self, p: &Point3) -> Real {
+        Solid::new(self).distance(p)
+    }
+}
+
+/// A hull ready for point queries: its faces' planes and triangles. Parry's
+/// `ConvexPolyhedron` point query misplaces points by millimetres on centimetre-sized hulls
+/// (a scissors blade's), which would swamp the fit it measures; this is exact.
+struct Solid {
+    planes: Vec<(Vector3, Point3)>,
+    triangles: Vec<Triangle>,
+    tolerance: Real,
+}
+
+impl Solid {
+    fn new(hull: &Hull) -> Self {
+        let triangles: Vec<Triangle> = hull
+            .triangles
+            .iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|i| hull.vertices[i as usize]);
+                Triangle::new(a, b, c)
+            })
+            .collect();
+        let planes = triangles
+            .iter()
+            .filter_map(|t| {
+                let n = pairs::math::try_unit(&(t.b - t.a).cross(&(t.c - t.a)))?;
+                Some((n, t.a))
+            })
+            .collect();
+        let (lo, hi) = super::urdf::bounds(hull.vertices.iter());
+        Self { planes, triangles, tolerance: 1e-6 * (hi - lo).norm().max(Real::EPSILON) }
+    }
+
+    fn distance(&self, p: &Point3) -> Real {
+        if self.planes.iter().all(|(n, a)| n.dot(&(p - a)) <= self.tolerance) {
+            return 0.0;
+        }
+        self.triangles
+            .iter()
+            .map(|t| t.distance_to_local_point(p, false))
+            .fold(Real::INFINITY, Real::min)
+    }
 }
 
 /// How well a link's hulls fit its visual mesh.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct Fit {
-    /// Volume enclosed by the visual mesh (the sum over its pieces).
+    /// Volume enclosed by the visual mesh (the sum over its closed pieces).
     pub visual_volume: f64,
     /// Sum of the hulls' volumes.
     pub hull_volume: f64,
@@ -348,27 +397,39 @@ fn surface_samples(vertices: &[Point3], triangles: &[[u32; 3]]) -> Vec<Point3> {
 
 /// How well `hulls` fit `mesh`.
 fn fit(mesh: &Mesh, hulls: &[Hull]) -> Fit {
+    // An open piece encloses no volume of its own: only closed pieces count.
     let visual_volume = pieces(mesh)
         .iter()
+        .filter(|(v, t)| is_closed(v, t))
         .map(|(v, t)| signed_volume(v, t).abs())
         .sum::<f64>();
     let hull_volume = hulls.iter().map(Hull::volume).sum();
-    let shapes: Vec<ConvexPolyhedron> =
-        hulls.iter().filter_map(|h| ConvexPolyhedron::from_convex_hull(&h.vertices)).collect();
-    // Visual surface to the hulls (zero inside one).
-    let outside = surface_samples(&mesh.vertices, &mesh.triangles)
-        .iter()
-        .map(|p| {
-            shapes.iter().map(|s| s.distance_to_local_point(p, true)).fold(Real::INFINITY, Real::min)
-        })
-        .fold(0.0, Real::max);
+    // Visual surface to the hulls (zero inside one). At most MAX_SAMPLES samples, evenly
+    // strided, bound the cost on large asset meshes.
+    let samples = surface_samples(&mesh.vertices, &mesh.triangles);
+    let stride = samples.len().div_ceil(MAX_SAMPLES).max(1);
+    let solids: Vec<Solid> = hulls.iter().map(Solid::new).collect();
+    let nearest = |p: &Point3| {
+        let mut best = Real::INFINITY;
+        for solid in &solids {
+            best = best.min(solid.distance(p));
+            if best == 0.0 {
+                break;
+            }
+        }
+        best
+    };
+    let outside = samples.iter().step_by(stride).map(nearest).fold(0.0, Real::max);
     // Hull surfaces to the visual surface.
     let over = TriMesh::new(mesh.vertices.clone(), mesh.triangles.clone())
         .map(|surface| {
-            hulls
+            let samples: Vec<Point3> =
+                hulls.iter().flat_map(|h| surface_samples(&h.vertices, &h.triangles)).collect();
+            let stride = samples.len().div_ceil(MAX_SAMPLES).max(1);
+            samples
                 .iter()
-                .flat_map(|h| surface_samples(&h.vertices, &h.triangles))
-                .map(|p| surface.distance_to_local_point(&p, false))
+                .step_by(stride)
+                .map(|p| surface.distance_to_local_point(p, false))
                 .fold(0.0, Real::max)
         })
         .unwrap_or(Real::NAN);
@@ -381,6 +442,20 @@ mod tests {
 
     fn corner(x: Real, y: Real, z: Real) -> Point3 {
         Point3::new(x, y, z)
+    }
+
+    #[test]
+    fn hull_distances_are_exact() {
+        // A thin 1.6 cm slab (a scissors blade's piece): its own corners are on it, a point
+        // 1 cm above its top is 1 cm away, its centre is inside.
+        let mesh = Mesh::cuboid(corner(0.0, 0.0, 0.0), corner(0.016, 0.006, 0.004));
+        let hull = Hull::of(&mesh.vertices).expect("a hull");
+        for v in &mesh.vertices {
+            assert!(hull.distance(v) < 1e-7, "{v:?}: {}", hull.distance(v));
+        }
+        assert!((hull.distance(&corner(0.008, 0.016, 0.002)) - 0.01).abs() < 1e-6);
+        assert!((hull.distance(&corner(0.026, 0.016, 0.002)) - 0.01 * 2f32.sqrt()).abs() < 1e-6);
+        assert_eq!(hull.distance(&corner(0.008, 0.003, 0.002)), 0.0);
     }
 
     #[test]
@@ -412,8 +487,7 @@ mod tests {
         assert_eq!(c.hulls.len(), 5);
         let centre = corner(0.5, 0.5, 0.5);
         for h in &c.hulls {
-            let shape = ConvexPolyhedron::from_convex_hull(&h.vertices).expect("a hull");
-            assert!(shape.distance_to_local_point(&centre, true) > 0.4);
+            assert!(h.distance(&centre) > 0.4);
         }
         assert!(c.fit.hausdorff < 1e-6);
     }
