@@ -187,7 +187,8 @@ fn a_non_empty_output_folder_is_refused_and_left_as_it_was() {
     let left: Vec<_> = std::fs::read_dir(&out).expect("list").collect();
     assert_eq!(left.len(), 1);
     assert_eq!(std::fs::read_to_string(out.join("notes.txt")).expect("kept"), "mine");
-    let written = export_objects(&config, &objects, &out, true, &Default::default(), |_| {}).expect("forced");
+    let written =
+        export_objects(&config, &objects, &out, true, &Default::default(), |_| {}).expect("forced");
     assert_eq!(written.len(), 2);
     assert!(!out.join("notes.txt").exists());
     assert!(out.join("000001_laptop/mobility.urdf").is_file());
@@ -221,7 +222,8 @@ fn exported_user_assets_read_back_into_the_same_pairs() {
             source: Source::Asset { path: asset.into() },
             surfaces: Vec::new(),
         };
-        let written = write_object(&config, &item, dir.path(), &Default::default()).expect("exported");
+        let written =
+            write_object(&config, &item, dir.path(), &Default::default()).expect("exported");
         let urdf = dir.path().join(&written.folder).join("mobility.urdf");
         let read_back = load_asset(&urdf, &ImportOptions::default()).expect("reads back").object;
         assert_eq!(read_back.joints, original.joints, "{asset}");

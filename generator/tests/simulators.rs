@@ -18,11 +18,8 @@ use generator::mesh::Mesh;
 use pairs::math::Point3;
 
 fn cabinet() -> (GeneratorConfig, ObjectToExport) {
-    let config = GeneratorConfig {
-        categories: vec!["cabinet".into()],
-        seed: 5,
-        ..Default::default()
-    };
+    let config =
+        GeneratorConfig { categories: vec!["cabinet".into()], seed: 5, ..Default::default() };
     let object = build_object(&config, 0).expect("a cabinet");
     let item = ObjectToExport {
         object_id: 0,

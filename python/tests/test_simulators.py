@@ -186,6 +186,10 @@ def test_mujoco_loads_every_category_without_warnings(
         meta = json.loads((exported / obj["folder"] / "meta.json").read_text())
         for link, physics in meta["link_physics"].items():
             assert model.body(link).mass[0] == pytest.approx(physics["mass"], rel=1e-6)
+            body = model.body(link).id
+            colliding = [g for g in range(model.ngeom)
+                         if model.geom_bodyid[g] == body and model.geom_contype[g]]  # fmt: skip
+            assert len(colliding) == physics["hulls"], f"{obj['folder']} {link}"
 
 
 def test_mujoco_forward_kinematics_matches_the_generator(

@@ -37,8 +37,8 @@ pub const VHACD_CONCAVITY: Real = 0.01;
 /// Most surface samples per direction when measuring the fit (a large asset mesh is
 /// sampled at an even stride).
 pub const MAX_SAMPLES: usize = 20_000;
-/// Thickness given to a flat piece's hull, in object units (objects are about one unit
-/// across).
+/// Thickness given to a flat piece's hull, in object units (metres for the built-in
+/// categories, which are modelled at real-world sizes).
 pub const FLAT_THICKNESS: Real = 2e-3;
 
 /// How much collision geometry a link may have.
@@ -181,8 +181,7 @@ pub fn decompose(mesh: &Mesh, budget: Budget) -> LinkCollision {
 
 /// Each piece's vertices and triangles (indices into its own vertices).
 fn pieces(mesh: &Mesh) -> Vec<(Vec<Point3>, Vec<[u32; 3]>)> {
-    let starts: Vec<u32> =
-        if mesh.pieces.is_empty() { vec![0] } else { mesh.pieces.clone() };
+    let starts: Vec<u32> = if mesh.pieces.is_empty() { vec![0] } else { mesh.pieces.clone() };
     let piece_of = |v: u32| starts.partition_point(|&s| s <= v) - 1;
     let mut out: Vec<(Vec<Point3>, Vec<[u32; 3]>)> = starts
         .iter()
@@ -218,9 +217,7 @@ fn piece_hulls(
         return thick;
     };
     if !is_closed(vertices, triangles) {
-        notes.push(format!(
-            "piece {k} is open or non-manifold: its convex hull stands in for it"
-        ));
+        notes.push(format!("piece {k} is open or non-manifold: its convex hull stands in for it"));
         return vec![hull];
     }
     let own = signed_volume(vertices, triangles).abs();
@@ -266,8 +263,7 @@ fn thickened(points: &[Point3]) -> Vec<Hull> {
         .unwrap_or_else(|| perpendicular(&along));
     let side = normal.cross(&along);
     let h = FLAT_THICKNESS * 0.5;
-    let slab: Vec<Point3> =
-        points.iter().flat_map(|p| [p - normal * h, p + normal * h]).collect();
+    let slab: Vec<Point3> = points.iter().flat_map(|p| [p - normal * h, p + normal * h]).collect();
     let wide: Vec<Point3> = slab.iter().flat_map(|p| [p - side * h, p + side * h]).collect();
     Hull::of(&slab).or_else(|| Hull::of(&wide)).into_iter().collect()
 }
@@ -511,9 +507,7 @@ mod tests {
     fn a_non_convex_closed_piece_is_decomposed() {
         // One connected, closed L-shaped solid (an asset's component): two hulls or more,
         // and far less volume than its hull.
-        let l = [
-            (0.0, 0.0), (2.0, 0.0), (2.0, 0.5), (0.5, 0.5), (0.5, 2.0), (0.0, 2.0),
-        ];
+        let l = [(0.0, 0.0), (2.0, 0.0), (2.0, 0.5), (0.5, 0.5), (0.5, 2.0), (0.0, 2.0)];
         let mut vertices = Vec::new();
         for z in [0.0, 1.0] {
             vertices.extend(l.iter().map(|&(x, y)| corner(x, y, z)));

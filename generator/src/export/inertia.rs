@@ -18,8 +18,8 @@ use serde::Serialize;
 use super::collision::Hull;
 use crate::mesh::Mesh;
 
-/// Default density, kilograms per cubic object unit (objects are about one unit across:
-/// read the unit as a metre and this is a light wood or a plastic).
+/// Default density, kilograms per cubic object unit (the built-in categories are modelled
+/// at real-world sizes in metres: 500 kg/m³ is a light wood or a plastic).
 pub const DEFAULT_DENSITY: f64 = 500.0;
 
 /// Smallest principal moment, as a fraction of the largest.

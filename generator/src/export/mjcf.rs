@@ -39,26 +39,19 @@ pub fn mjcf_text(object: &ArticulatedObject, physics: &[LinkPhysics]) -> String 
     }
     let mut out = String::new();
     let _ = writeln!(out, r#"<mujoco model="{}">"#, escape(&object.category));
-    let _ = writeln!(
-        out,
-        r#"  <compiler angle="radian" autolimits="true" balanceinertia="true"/>"#
-    );
+    let _ =
+        writeln!(out, r#"  <compiler angle="radian" autolimits="true" balanceinertia="true"/>"#);
     let _ = writeln!(out, r#"  <option gravity="{}"/>"#, triple(GRAVITY));
     let _ = writeln!(out, "  <default>");
     // Stiff joint limits (a time constant of two default steps, MuJoCo's smallest stable
     // one): the default soft limit lets a heavy link sink a few degrees past its limit.
-    let _ = writeln!(
-        out,
-        r#"    <joint solreflimit="0.004 1" solimplimit="0.95 0.99 0.001"/>"#
-    );
+    let _ = writeln!(out, r#"    <joint solreflimit="0.004 1" solimplimit="0.95 0.99 0.001"/>"#);
     let _ = writeln!(
         out,
         r#"    <default class="visual"><geom type="mesh" contype="0" conaffinity="0" group="2"/></default>"#
     );
-    let _ = writeln!(
-        out,
-        r#"    <default class="collision"><geom type="mesh" group="3"/></default>"#
-    );
+    let _ =
+        writeln!(out, r#"    <default class="collision"><geom type="mesh" group="3"/></default>"#);
     let _ = writeln!(out, "  </default>");
     let _ = writeln!(out, "  <asset>");
     for i in 0..object.links.len() {
@@ -98,7 +91,8 @@ pub fn mjcf_text(object: &ArticulatedObject, physics: &[LinkPhysics]) -> String 
         let _ = writeln!(out, r#"{pad}<body name="{}" pos="{}">"#, link_name(i), triple(pos));
         if let Some(p) = physics.get(i) {
             let m = &p.inertial;
-            let com: [f64; 3] = std::array::from_fn(|k| f64::from(m.com[k]) - f64::from(origins[i][k]));
+            let com: [f64; 3] =
+                std::array::from_fn(|k| f64::from(m.com[k]) - f64::from(origins[i][k]));
             let q = m.principal_frame.quaternion();
             let _ = writeln!(
                 out,

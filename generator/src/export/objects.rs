@@ -31,9 +31,9 @@ use super::output::{write_file, OutputError, Staging};
 use super::physics::{object_physics, summary, CollisionSummary, PhysicsOptions};
 use super::urdf::{hull_path, link_name, mesh_path, mobility_json, obj_text, urdf_text};
 use super::usd::usda_text;
-use crate::mesh::Mesh;
 use crate::config::GeneratorConfig;
 use crate::generate::{configuration, object_states, GENERATOR_VERSION};
+use crate::mesh::Mesh;
 use crate::objects::{identifier, ArticulatedObject};
 
 /// Version of the object folder layout, in every `meta.json`.

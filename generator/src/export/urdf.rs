@@ -79,9 +79,9 @@ pub fn urdf_text(object: &ArticulatedObject, physics: &[LinkPhysics]) -> String 
         out,
         r#"  <link name="{BASE_LINK}"><inertial><origin xyz="0 0 0" rpy="0 0 0"/><mass value="0.001"/><inertia ixx="1e-9" ixy="0" ixz="0" iyy="1e-9" iyz="0" izz="1e-9"/></inertial></link>"#
     );
-    for i in 0..object.links.len() {
+    for (i, at) in origins.iter().enumerate() {
         let _ = writeln!(out, r#"  <link name="{}">"#, link_name(i));
-        let back = origins[i].coords.map(|c| 0.0 - f64::from(c));
+        let back = at.coords.map(|c| 0.0 - f64::from(c));
         let origin = format!(r#"<origin xyz="{}" rpy="0 0 0"/>"#, triple(back.into()));
         let geometry = format!(r#"<geometry><mesh filename="{}"/></geometry>"#, mesh_path(i));
         let _ = writeln!(out, "    <visual>{origin}{geometry}</visual>");
@@ -94,7 +94,7 @@ pub fn urdf_text(object: &ArticulatedObject, physics: &[LinkPhysics]) -> String 
                 format!(r#"<geometry><mesh filename="{}"/></geometry>"#, hull_path(i, k));
             let _ = writeln!(out, "    <collision>{origin}{geometry}</collision>");
         }
-        let _ = write!(out, "{}", inertial(&physics.inertial, &origins[i]));
+        let _ = write!(out, "{}", inertial(&physics.inertial, at));
         let _ = writeln!(out, "  </link>");
     }
     let base_joint = base_joint_name(object);

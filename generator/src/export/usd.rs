@@ -82,13 +82,15 @@ fn string(text: &str) -> String {
 }
 
 /// A `Mesh` prim's geometry attributes (indented by `pad`).
-fn mesh_attributes(out: &mut String, pad: &str, vertices: &[pairs::math::Point3], triangles: &[[u32; 3]]) {
+fn mesh_attributes(
+    out: &mut String,
+    pad: &str,
+    vertices: &[pairs::math::Point3],
+    triangles: &[[u32; 3]],
+) {
     let counts = vec!["3"; triangles.len()].join(", ");
     let indices: Vec<String> = triangles.iter().flatten().map(u32::to_string).collect();
-    let points: Vec<String> = vertices
-        .iter()
-        .map(|p| tuple(widen([p.x, p.y, p.z])))
-        .collect();
+    let points: Vec<String> = vertices.iter().map(|p| tuple(widen([p.x, p.y, p.z]))).collect();
     let _ = writeln!(out, "{pad}int[] faceVertexCounts = [{counts}]");
     let _ = writeln!(out, "{pad}int[] faceVertexIndices = [{}]", indices.join(", "));
     let _ = writeln!(out, "{pad}point3f[] points = [{}]", points.join(", "));
@@ -119,7 +121,8 @@ pub fn usda_text(object: &ArticulatedObject, physics: &[LinkPhysics]) -> String 
     let _ = writeln!(out, "    prepend apiSchemas = [\"PhysicsArticulationRootAPI\"]");
     let _ = writeln!(out, ")");
     let _ = writeln!(out, "{{");
-    let _ = writeln!(out, "    custom string part_induction:category = {}", string(&object.category));
+    let _ =
+        writeln!(out, "    custom string part_induction:category = {}", string(&object.category));
     let _ = writeln!(out, "    def PhysicsScene \"physics_scene\"");
     let _ = writeln!(out, "    {{");
     let _ = writeln!(out, "        vector3f physics:gravityDirection = (0, -1, 0)");
@@ -203,7 +206,8 @@ fn write_link(
     let at = widen([origin.x, origin.y, origin.z]);
     let back = at.map(|c| 0.0 - c);
     let _ = writeln!(out, "    def Xform \"{}\" (", link_name(i));
-    let _ = writeln!(out, "        prepend apiSchemas = [\"PhysicsRigidBodyAPI\", \"PhysicsMassAPI\"]");
+    let _ =
+        writeln!(out, "        prepend apiSchemas = [\"PhysicsRigidBodyAPI\", \"PhysicsMassAPI\"]");
     let _ = writeln!(out, "    )");
     let _ = writeln!(out, "    {{");
     let pad = "        ";

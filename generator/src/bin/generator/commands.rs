@@ -5,12 +5,12 @@ use std::path::PathBuf;
 
 use anyhow::{bail, Context, Result};
 use generator::asset_dataset::{load_assets, relative};
-use generator::export::formats::{export_dataset, Format};
 use generator::export::collision::Budget;
+use generator::export::formats::{export_dataset, Format};
 use generator::export::inertia::DEFAULT_DENSITY;
 use generator::export::objects::{
-    built_in_objects, export_objects, ExportOptions, ExportedObject, ObjectFormat,
-    ObjectToExport, Source,
+    built_in_objects, export_objects, ExportOptions, ExportedObject, ObjectFormat, ObjectToExport,
+    Source,
 };
 use generator::export::physics::PhysicsOptions;
 use generator::shard::merge_shards;
@@ -28,8 +28,9 @@ pub(crate) struct PhysicsArgs {
     /// mjcf (MuJoCo), usd (UsdPhysics .usda: Isaac Sim).
     #[arg(long, value_delimiter = ',', default_value = "urdf,mjcf,usd", value_parser = parse_object_format)]
     format: Vec<ObjectFormat>,
-    /// Density of every link, kilograms per cubic object unit (objects are about one unit
-    /// across); masses and inertias come from the meshes' volumes.
+    /// Density of every link, kilograms per cubic object unit (kg/m³: the built-in
+    /// categories are modelled at real-world sizes in metres); masses and inertias come
+    /// from the meshes' volumes.
     #[arg(long, default_value_t = DEFAULT_DENSITY)]
     density: f64,
     /// Convex collision hulls per link at most (the cheapest to merge are merged).
@@ -81,9 +82,8 @@ pub(crate) fn export_objects_command(
     let objects = selected_objects(selection, &config, "exported")?;
     let bar = progress_bar(objects.len() as u64, "objects");
     bar.set_message(format!("exporting {}", out.display()));
-    let written =
-        export_objects(&config, &objects, out, force, &options, |n| bar.set_position(n))
-            .with_context(|| format!("exporting objects to {}", out.display()))?;
+    let written = export_objects(&config, &objects, out, force, &options, |n| bar.set_position(n))
+        .with_context(|| format!("exporting objects to {}", out.display()))?;
     bar.finish_and_clear();
     let formats: Vec<&str> = options.formats.iter().map(|f| f.as_str()).collect();
     println!(
