@@ -771,3 +771,48 @@ def test_sapien_loads_every_category_simulates_and_drives_it(
             assert abs(q - drawn[-1][name]) <= 0.01 * (hi - lo) + 1e-4, (
                 f"{obj['folder']} {name}: {q} for {drawn[-1][name]}"
             )
+
+
+def test_pybullet_a_probe_rests_inside_every_opened_container(
+    bullet: int, exported: Path, kinematics: List[Dict[str, Any]]
+) -> None:
+    """The same spots as MuJoCo's probe test, in PyBullet: the sphere settles on the floor
+    it was set on, inside the container, touching no wall."""
+    checked = 0
+    for obj in kinematics:
+        if obj["category"] not in CONTAINERS:
+            continue
+        folder = exported / obj["folder"]
+        for link in CONTAINERS[obj["category"]]:
+            found = find_probe(folder, obj, link)
+            assert found is not None, f"{obj['folder']} {link}: no room"
+            at, radius, hull = found
+            body, joints, _ = pb_load(bullet, folder)
+            values = open_values(obj)
+            pb_set(bullet, body, joints, values)
+            for name, i in joints.items():
+                if name in values:  # held open
+                    pybullet.setJointMotorControl2(
+                        body, i, pybullet.POSITION_CONTROL, targetPosition=values[name],
+                        force=1e12, physicsClientId=bullet,
+                    )
+            shape = pybullet.createCollisionShape(pybullet.GEOM_SPHERE, radius=radius,
+                                                  physicsClientId=bullet)  # fmt: skip
+            probe = pybullet.createMultiBody(0.01, shape, basePosition=at.tolist(),
+                                             physicsClientId=bullet)  # fmt: skip
+            pybullet.changeDynamics(probe, -1, rollingFriction=0.005, spinningFriction=0.005,
+                                    physicsClientId=bullet)  # fmt: skip
+            pybullet.setGravity(*GRAVITY, physicsClientId=bullet)
+            for _ in range(240):
+                pybullet.stepSimulation(physicsClientId=bullet)
+            centre = np.asarray(pybullet.getBasePositionAndOrientation(probe, bullet)[0])
+            assert hull_margin(hull, centre) > 0.5 * radius, f"{obj['folder']} {link}: it left"
+            speed = np.linalg.norm(pybullet.getBaseVelocity(probe, bullet)[0])
+            assert speed < 0.05, f"{obj['folder']} {link}: not at rest ({speed} m/s)"
+            contacts = pybullet.getContactPoints(bodyA=probe, physicsClientId=bullet)
+            assert contacts, f"{obj['folder']} {link}: the probe floats"
+            for c in contacts:
+                assert abs(c[7][1]) > 0.95, f"{obj['folder']} {link}: a wall ({c[7]})"
+            pybullet.setGravity(0, 0, 0, physicsClientId=bullet)
+            checked += 1
+    assert checked == sum(len(links) for links in CONTAINERS.values())
