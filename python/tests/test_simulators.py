@@ -38,7 +38,7 @@ import pytest
 mujoco = pytest.importorskip("mujoco", reason="pip install mujoco (the `sim` extra)")
 pybullet = pytest.importorskip("pybullet", reason="pip install pybullet (the `sim` extra)")
 pxr = pytest.importorskip("pxr", reason="pip install usd-core (the `sim` extra)")
-from pxr import Gf, Usd, UsdPhysics  # noqa: E402
+from pxr import Gf, Usd, UsdGeom, UsdPhysics  # noqa: E402
 from scipy.spatial import ConvexHull  # noqa: E402
 
 GRAVITY = np.array([0.0, -9.81, 0.0])  # the object frame is Y-up
@@ -642,7 +642,7 @@ def test_usd_parses_with_usdphysics_and_agrees_with_the_generator(
             stage = Usd.Stage.Open(str(folder / "mobility.usda"))
             parsed = UsdPhysics.UsdPhysicsLoadStageFromPrimRange(stage, ["/"])
         assert printed[0].strip() == "", f"{obj['folder']}: {printed[0]}"
-        assert UsdGeomUpAxis(stage) == "Y"
+        assert str(UsdGeom.GetStageUpAxis(stage)) == "Y"
         found = {str(k).split(".")[-1]: v for k, v in parsed.items()}
         assert len(found["Articulation"][0]) == 1 and len(found["Scene"][0]) == 1
         meta = json.loads((folder / "meta.json").read_text())
@@ -694,12 +694,6 @@ def test_usd_parses_with_usdphysics_and_agrees_with_the_generator(
 
             for link, expected in state["links"].items():
                 assert_pose(pose(link), expected["transform"], f"{obj['folder']} {link}")
-
-
-def UsdGeomUpAxis(stage: Any) -> str:
-    from pxr import UsdGeom
-
-    return str(UsdGeom.GetStageUpAxis(stage))
 
 
 # ----------------------------------------------------------------------------------- SAPIEN

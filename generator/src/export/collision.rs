@@ -160,9 +160,22 @@ pub fn decompose(mesh: &Mesh, budget: Budget) -> LinkCollision {
     let mut notes = Vec::new();
     let mut hulls = Vec::new();
     let mut closed = true;
+    // An open piece encloses no volume of its own: only closed pieces count.
+    let mut visual_volume = 0.0;
     for (k, (vertices, triangles)) in pieces(mesh).into_iter().enumerate() {
-        closed &= is_closed(&vertices, &triangles);
-        hulls.extend(piece_hulls(k, &vertices, &triangles, &mut notes));
+        let piece_closed = is_closed(&vertices, &triangles);
+        let own = signed_volume(&vertices, &triangles).abs();
+        closed &= piece_closed;
+        if piece_closed {
+            visual_volume += own;
+        }
+        hulls.extend(piece_hulls(
+            k,
+            &vertices,
+            &triangles,
+            piece_closed.then_some(own),
+            &mut notes,
+        ));
     }
     if hulls.is_empty() {
         // Only possible for a mesh without vertices; the importer refuses those.
@@ -176,7 +189,7 @@ pub fn decompose(mesh: &Mesh, budget: Budget) -> LinkCollision {
             }
         }
     }
-    let fit = fit(mesh, &hulls);
+    let fit = fit(mesh, visual_volume, &hulls);
     LinkCollision { hulls, fit, closed, notes }
 }
 
@@ -203,11 +216,13 @@ fn pieces(mesh: &Mesh) -> Vec<(Vec<Point3>, Vec<[u32; 3]>)> {
     out
 }
 
-/// The hulls of piece `k`, noting any fallback.
+/// The hulls of piece `k`, noting any fallback; `closed_volume` is the piece's volume when
+/// it is closed, `None` when it is open or non-manifold.
 fn piece_hulls(
     k: usize,
     vertices: &[Point3],
     triangles: &[[u32; 3]],
+    closed_volume: Option<f64>,
     notes: &mut Vec<String>,
 ) -> Vec<Hull> {
     let Some(hull) = Hull::of(vertices) else {
@@ -217,11 +232,10 @@ fn piece_hulls(
         }
         return thick;
     };
-    if !is_closed(vertices, triangles) {
+    let Some(own) = closed_volume else {
         notes.push(format!("piece {k} is open or non-manifold: its convex hull stands in for it"));
         return vec![hull];
-    }
-    let own = signed_volume(vertices, triangles).abs();
+    };
     if hull.volume() <= own * (1.0 + CONVEX_TOLERANCE) {
         return vec![hull];
     }
@@ -392,14 +406,8 @@ fn surface_samples(vertices: &[Point3], triangles: &[[u32; 3]]) -> Vec<Point3> {
     out
 }
 
-/// How well `hulls` fit `mesh`.
-fn fit(mesh: &Mesh, hulls: &[Hull]) -> Fit {
-    // An open piece encloses no volume of its own: only closed pieces count.
-    let visual_volume = pieces(mesh)
-        .iter()
-        .filter(|(v, t)| is_closed(v, t))
-        .map(|(v, t)| signed_volume(v, t).abs())
-        .sum::<f64>();
+/// How well `hulls` fit `mesh`, whose closed pieces enclose `visual_volume`.
+fn fit(mesh: &Mesh, visual_volume: f64, hulls: &[Hull]) -> Fit {
     let hull_volume = hulls.iter().map(Hull::volume).sum();
     // Visual surface to the hulls (zero inside one). At most MAX_SAMPLES samples, evenly
     // strided, bound the cost on large asset meshes.

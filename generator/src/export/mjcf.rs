@@ -76,10 +76,9 @@ pub fn mjcf_text(object: &ArticulatedObject, physics: &[LinkPhysics]) -> String 
     let _ = writeln!(out, "  </asset>");
     let _ = writeln!(out, "  <worldbody>");
     // Depth-first over the tree from link 0, closing each body after its children.
-    let mut stack: Vec<(usize, bool)> = vec![(0, false)];
-    while let Some((i, closing)) = stack.pop() {
-        let depth = 2 + 2 * depth_of(&parents, object, i);
-        let pad = " ".repeat(depth);
+    let mut stack: Vec<(usize, usize, bool)> = vec![(0, 0, false)];
+    while let Some((i, depth, closing)) = stack.pop() {
+        let pad = " ".repeat(4 + 2 * depth);
         if closing {
             let _ = writeln!(out, "{pad}</body>");
             continue;
@@ -137,9 +136,9 @@ pub fn mjcf_text(object: &ArticulatedObject, physics: &[LinkPhysics]) -> String 
                 triple(back)
             );
         }
-        stack.push((i, true));
+        stack.push((i, depth, true));
         for &c in children[i].iter().rev() {
-            stack.push((c, false));
+            stack.push((c, depth + 1, false));
         }
     }
     let _ = writeln!(out, "  </worldbody>");
@@ -174,17 +173,4 @@ pub fn mjcf_text(object: &ArticulatedObject, physics: &[LinkPhysics]) -> String 
     }
     let _ = writeln!(out, "</mujoco>");
     out
-}
-
-/// How many joints link `i` hangs below link 0.
-fn depth_of(parents: &[Option<usize>], object: &ArticulatedObject, mut i: usize) -> usize {
-    let mut depth = 0;
-    while let Some(j) = parents.get(i).copied().flatten() {
-        i = object.joints[j].parent;
-        depth += 1;
-        if depth > parents.len() {
-            break;
-        }
-    }
-    depth
 }
