@@ -9,7 +9,7 @@ use generator::config::GeneratorConfig;
 use generator::stream::TrainingStream;
 use model::network::PartInductionNet;
 use model::train::config::TrainConfig;
-use model::train::{batch_gradients, stream_config};
+use model::train::{batch_gradients, stream_config, Draws};
 use pairs::math::Matrix3;
 
 /// jemalloc keeps freed large blocks for reuse (see the workspace's Cargo.toml).
@@ -74,9 +74,15 @@ fn bench(c: &mut Criterion) {
                 format!("{name}/train_step_stage{stage}_batch{batch_size}"),
                 |b| {
                     b.iter(|| {
-                        let (_, _, grads, _) =
-                            batch_gradients(&net, &config, &device, batch, &rotations, &[], stage)
-                                .expect("a loss");
+                        let (_, _, grads, _) = batch_gradients(
+                            &net,
+                            &config,
+                            &device,
+                            batch,
+                            Draws { rotations: &rotations, true_flow: &[], residuals: &[] },
+                            stage,
+                        )
+                        .expect("a loss");
                         net = optimizer.step(1e-4, net.clone(), grads);
                     })
                 },

@@ -4,13 +4,21 @@
 //!
 //! - **Flow floors**: the flow module's flow against the flows the matching alone implies
 //!   (soft-argmax and argmax over Q's subset) and against the true flow sampled at a subset
-//!   and interpolated back (what the subset size alone costs).
+//!   and interpolated back (what the subset size alone costs); the matching floor (every
+//!   subset point of P sent to the point of Q's subset nearest its true end: no matching onto
+//!   Q's subset can do better); the flow module fed that true matching (can it read
+//!   offsets?); and the residual floor, the flow the module predicts where none is left (P
+//!   moved by its true part motions, and Q against itself).
 //! - **Segmentation on the true flow**: the support module's matrix, a threshold rule on the
 //!   motion residual `‖R_i x_j + t_i − (x_j + f_j)‖ < τ` with the network's hypotheses or with
 //!   a rigid or similarity fit per true part (exact hypotheses), and the true same-part
 //!   matrix, each fed to the RPEN; the support IoU of the matrix and the IoU of the pass.
 //! - **The subset ceiling**: the true labels on the segmentation and correspondence subsets,
 //!   interpolated to every point (argmax, and the graph cut of [`segment_pair`]).
+//! - **The iterations** (`net-iter`), from the network's first pass and from the true
+//!   labels (their ceiling), each scored on its final flow (the last pass's piecewise-rigid
+//!   motion plus its residual flow) and on the piecewise-rigid flow of its final segments
+//!   alone.
 //! - **Scale**: the one scale of each pair's part motions, P's and Q's separate
 //!   normalisations (a rotation cannot fit it; a similarity can).
 
@@ -20,6 +28,7 @@ use pairs::transform::fit_similarity_weighted;
 use pairs::{Pair, PartId};
 
 use crate::inference::labels::{argmax, segment_pair, HardLabelParams};
+use crate::inference::InferenceParams;
 use crate::network::predict::{interpolate, LinearMotion};
 use crate::network::sampling::farthest_point_sampling;
 use crate::network::PartInductionNet;
@@ -32,17 +41,26 @@ pub struct DiagnoseParams {
     pub thresholds: Vec<f32>,
     /// Subset sizes at which the true flow is sampled and interpolated back.
     pub flow_samples: Vec<usize>,
+    /// Subset sizes (of P and of Q alike) of the matching floor: each subset point of P
+    /// sent to the point of Q's subset nearest its true destination.
+    pub matching_samples: Vec<usize>,
+    /// Whether to run the iterative procedure (`net-iter`) on each pair, from the network's
+    /// first pass and from the true labels (the slowest rows: about 4 passes a pair each).
+    pub iterations: bool,
     /// The graph cut of the subset-ceiling rows.
     pub hard: HardLabelParams,
 }
 
 impl Default for DiagnoseParams {
     /// τ from 0.01 to 0.08 (doubling), the true flow at 128 and 256 points (the `cpu` and
-    /// the release's correspondence subsets), the evaluator's graph cut.
+    /// the release's correspondence subsets), the matching floor at 128, 256 and 512 points,
+    /// the iterative procedure's rows, the evaluator's graph cut.
     fn default() -> Self {
         Self {
             thresholds: vec![0.01, 0.02, 0.04, 0.08],
             flow_samples: vec![128, 256],
+            matching_samples: vec![128, 256, 512],
+            iterations: true,
             hard: HardLabelParams::default(),
         }
     }
@@ -214,6 +232,14 @@ pub fn diagnose(
             .iter()
             .map(|n| format!("flow: the true flow at {n} points, interpolated")),
     )
+    .chain(params.matching_samples.iter().map(|n| {
+        format!("flow: each point to Q's subset point nearest its true end, {n} points (matching floor)")
+    }))
+    .chain([
+        "flow: the flow module fed the true matching (one-hot, times the true mask)".to_string(),
+        "residual: the flow module on P moved by the true motions (mean flow; ideal 0)".to_string(),
+        "residual: the flow module on (Q, Q) (mean flow; ideal 0)".to_string(),
+    ])
     .chain(["true flow: the support module (net-seg@gt-flow, one pass)".to_string()])
     .chain(
         ["the network's hypotheses", "a rigid fit per true part", "a similarity fit per true part"]
@@ -229,6 +255,7 @@ pub fn diagnose(
             format!("ceiling: true labels at {n} points, interpolated (graph cut)"),
         ]
     }))
+    .chain(params.iterations.then(iteration_rows).into_iter().flatten())
     .collect();
     let mut sums = vec![Sums::default(); names.len()];
     let mut scales = Vec::with_capacity(pairs.len());
@@ -240,12 +267,15 @@ pub fn diagnose(
         let truth_flow = true_flow(pair)?;
         let points = &input.p.points;
         let mut row = 0;
-        let add_epe = |sums: &mut [Sums], row: &mut usize, flow: &[Vector3]| {
-            let e = epe(flow, truth_flow).map_err(metric)?;
+        let add_epe_to = |sums: &mut [Sums], row: &mut usize, flow: &[Vector3], to: &[Vector3]| {
+            let e = epe(flow, to).map_err(metric)?;
             sums[*row].epe += e;
             sums[*row].epe_n += 1;
             *row += 1;
             Ok::<_, DiagnoseError>(())
+        };
+        let add_epe = |sums: &mut [Sums], row: &mut usize, flow: &[Vector3]| {
+            add_epe_to(sums, row, flow, truth_flow)
         };
         let (flow, _) = net.flow_pass(input).map_err(network)?;
         add_epe(&mut sums, &mut row, &flow)?;
@@ -265,6 +295,44 @@ pub fn diagnose(
                 back.chunks(3).map(|f| Vector3::new(f[0], f[1], f[2])).collect();
             add_epe(&mut sums, &mut row, &back)?;
         }
+        // The matching floor: each subset point of P to the point of Q's subset nearest its
+        // true end, interpolated to every point of P.
+        let q_plain: Vec<[f32; 3]> = input.q.points.iter().map(|x| [x.x, x.y, x.z]).collect();
+        for &n in &params.matching_samples {
+            let sub_p = farthest_point_sampling(&plain, n.min(plain.len())).map_err(network)?;
+            let sub_q = farthest_point_sampling(&q_plain, n.min(q_plain.len())).map_err(network)?;
+            let p_m: Vec<[f32; 3]> = sub_p.iter().map(|&i| plain[i]).collect();
+            let values: Vec<f32> = sub_p
+                .iter()
+                .flat_map(|&i| {
+                    let end = points[i] + truth_flow[i];
+                    let j = sub_q
+                        .iter()
+                        .copied()
+                        .min_by(|&a, &b| {
+                            (input.q.points[a] - end)
+                                .norm_squared()
+                                .total_cmp(&(input.q.points[b] - end).norm_squared())
+                        })
+                        .unwrap_or(0);
+                    let f = input.q.points[j] - points[i];
+                    [f.x, f.y, f.z]
+                })
+                .collect();
+            let back = interpolate(&plain, &p_m, &values, 3).map_err(network)?;
+            let back: Vec<Vector3> =
+                back.chunks(3).map(|f| Vector3::new(f[0], f[1], f[2])).collect();
+            add_epe(&mut sums, &mut row, &back)?;
+        }
+        let fed =
+            net.flow_given_true_matching(input, truth_flow, &truth.corr_mask).map_err(network)?;
+        add_epe(&mut sums, &mut row, &fed)?;
+        let mut aligned = input.clone();
+        aligned.p.points = points.iter().zip(truth_flow).map(|(x, f)| x + f).collect();
+        let (residual, _) = net.flow_pass(&aligned).map_err(network)?;
+        add_epe_to(&mut sums, &mut row, &residual, &vec![Vector3::zeros(); residual.len()])?;
+        let null = net.null_flow(input).map_err(network)?;
+        add_epe_to(&mut sums, &mut row, &null, &vec![Vector3::zeros(); null.len()])?;
         // Segmentation on the true flow.
         let add_pass = |sums: &mut [Sums], row: &mut usize, support: Option<(&[f32], f64)>| {
             let probs = net
@@ -333,6 +401,32 @@ pub fn diagnose(
                 row += 1;
             }
         }
+        if params.iterations {
+            let labels = pairs::parts::part_segments(&truth.part_p);
+            for start in [None, Some(labels.as_slice())] {
+                let prediction = net
+                    .infer_from(input, &InferenceParams::iterative(), start)
+                    .map_err(network)?
+                    .prediction();
+                let flow = prediction.flow.clone().unwrap_or_default();
+                let matching =
+                    matched_iou(&prediction.segments_p, &truth.part_p).map_err(metric)?;
+                sums[row].iou += matching.iou.iter().sum::<f64>();
+                sums[row].parts += matching.iou.len();
+                add_epe(&mut sums, &mut row, &flow)?;
+                let rigid: Vec<Vector3> = points
+                    .iter()
+                    .zip(&prediction.segments_p)
+                    .map(|(x, &l)| {
+                        prediction
+                            .motions
+                            .get(l as usize)
+                            .map_or(Vector3::zeros(), |m| m.apply(x) - x)
+                    })
+                    .collect();
+                add_epe(&mut sums, &mut row, &rigid)?;
+            }
+        }
         debug_assert_eq!(row, names.len());
         scales.push(f64::from((truth.motions.first().map_or(1.0, |m| m.scale) - 1.0).abs()));
         progress(done + 1);
@@ -345,6 +439,21 @@ pub fn diagnose(
         rows: names.into_iter().zip(&sums).map(|(name, s)| s.row(name)).collect(),
         scale: ScaleSummary { median: at(0.5), p90: at(0.9), max: at(1.0) },
     })
+}
+
+/// The names of the iterative procedure's rows: from the network's first pass and from the
+/// true labels, each its final flow (with its labels' IoU) and the piecewise-rigid flow of
+/// its final segments alone.
+fn iteration_rows() -> Vec<String> {
+    ["net-iter", "net-iter from the true labels"]
+        .iter()
+        .flat_map(|from| {
+            [
+                format!("{from}: the final flow (P' - P + last residual), its labels"),
+                format!("{from}: the piecewise-rigid flow of its final segments alone"),
+            ]
+        })
+        .collect()
 }
 
 /// The subset sizes of the ceiling rows: the segmentation subset, then the correspondence

@@ -18,7 +18,7 @@ use model::train::average::average_weights;
 use model::train::checkpoint::{load_weights, save_weights, CheckpointDir};
 use model::train::config::TrainConfig;
 use model::train::validation::{
-    compare, score_pairs, validation_pairs, PairScores, Scores, VALIDATION_SEED,
+    compare, score_pairs_aligned, validation_pairs, PairScores, Scores, VALIDATION_SEED,
 };
 use model::train::{Budget, RunPaths, Trainer};
 use pairs::{PairInput, Prediction};
@@ -90,6 +90,13 @@ enum Command {
         /// Bootstrap resamples for `--against`.
         #[arg(long, default_value_t = 2000)]
         resamples: usize,
+        /// Global alignments of P before the `--weights` pass (the authors' release: 2),
+        /// for weights trained without relative pose (`relative_pose = false`).
+        #[arg(long, default_value_t = 0)]
+        global_alignments: usize,
+        /// Global alignments before the `--against` pass.
+        #[arg(long, default_value_t = 0, requires = "against")]
+        against_global_alignments: usize,
     },
     /// Decompose the network's error by oracle substitution, without training: the flow
     /// module against the matching alone and the true flow at subset sizes; on the true
@@ -435,7 +442,16 @@ fn main() -> Result<()> {
                 );
             }
         }
-        Command::Validate { config, weights, pairs, against, against_config, resamples } => {
+        Command::Validate {
+            config,
+            weights,
+            pairs,
+            against,
+            against_config,
+            resamples,
+            global_alignments,
+            against_global_alignments,
+        } => {
             let config = TrainConfig::load(&config)?;
             let other_config = match &against_config {
                 Some(name) => TrainConfig::load(name)?,
@@ -460,19 +476,21 @@ fn main() -> Result<()> {
                         .expect("a valid template")
                         .progress_chars("=> "),
                 );
-            let scored = |net| -> Result<Vec<PairScores>> {
+            let scored = |net, alignments| -> Result<Vec<PairScores>> {
                 let mut all = Vec::with_capacity(pairs.len());
                 for chunk in pairs.chunks(8) {
-                    all.extend(score_pairs(net, chunk)?);
+                    all.extend(score_pairs_aligned(net, chunk, alignments)?);
                     bar.inc(chunk.len() as u64);
                 }
                 Ok(all)
             };
-            let a = scored(&net).with_context(|| format!("scoring {}", weights.display()))?;
+            let a = scored(&net, global_alignments)
+                .with_context(|| format!("scoring {}", weights.display()))?;
             let b = match (&other, &against) {
-                (Some(net), Some(path)) => {
-                    Some(scored(net).with_context(|| format!("scoring {}", path.display()))?)
-                }
+                (Some(net), Some(path)) => Some(
+                    scored(net, against_global_alignments)
+                        .with_context(|| format!("scoring {}", path.display()))?,
+                ),
                 _ => None,
             };
             bar.finish_and_clear();

@@ -9,7 +9,7 @@ use model::network::sampling::SamplingError;
 use model::network::PartInductionNet;
 use model::train::checkpoint::{load_weights, save_weights, CheckpointDir};
 use model::train::config::TrainConfig;
-use model::train::{stream_config, Budget, RunPaths, Trainer};
+use model::train::{stream_config, Budget, Draws, RunPaths, Trainer};
 use pairs::math::Point3;
 use pairs::{Cloud, Pair, PairInput};
 
@@ -154,6 +154,10 @@ fn the_segmentation_module_on_the_networks_own_flow_predicts_like_the_network() 
 }
 
 /// Every parameter's gradient, in module order (empty for a parameter without one).
+fn draws<'a>(rotations: &'a [pairs::math::Matrix3], true_flow: &'a [bool]) -> Draws<'a> {
+    Draws { rotations, true_flow, residuals: &[] }
+}
+
 fn gradient_values(net: &PartInductionNet, grads: &burn::optim::GradientsParams) -> Vec<Vec<f32>> {
     struct Collect<'a> {
         grads: &'a burn::optim::GradientsParams,
@@ -186,7 +190,7 @@ fn two_replicas_sum_the_gradients_of_their_halves_of_the_batch() {
     let marks = [true, false, false, true];
     for stage in [1u8, 3] {
         let (value, _, grads, phases) =
-            batch_gradients(&net, &two, &device, &pairs, &rotations, &marks, stage)
+            batch_gradients(&net, &two, &device, &pairs, draws(&rotations, &marks), stage)
                 .expect("a step");
         assert!(phases.batch > 0.0 && phases.forward > 0.0 && phases.backward > 0.0);
         assert_eq!(phases.optimizer, 0.0, "the optimiser is the caller's");
@@ -199,8 +203,7 @@ fn two_replicas_sum_the_gradients_of_their_halves_of_the_batch() {
                     &one,
                     &device,
                     &pairs[range.clone()],
-                    &rotations[range.clone()],
-                    &marks[range],
+                    draws(&rotations[range.clone()], &marks[range]),
                     stage,
                 )
                 .expect("a step");
@@ -441,4 +444,140 @@ fn the_release_switches_stop_gradients_where_the_release_does() {
     assert!(rpen_only[total - rpen..].iter().any(|g| nonzero(g)));
     let whole = grads(3, Objective::default());
     assert!(whole[hyp_range].iter().any(|g| nonzero(g)), "the default trains the hypotheses");
+}
+
+#[test]
+fn a_residual_pair_asks_for_the_flow_its_perturbation_left() {
+    use model::train::batch::{BatchOptions, TrainingBatch};
+    use pairs::math::{Isometry3, Matrix3, Vector3};
+    let config = tiny();
+    let pairs = some_pairs(&config, 2);
+    let rotations = vec![Matrix3::identity(); 2];
+    let shift = Vector3::new(0.01, -0.02, 0.005);
+    let residuals =
+        [Some(Isometry3::identity()), Some(Isometry3::translation(shift.x, shift.y, shift.z))];
+    let device = Device::flex();
+    let batch = TrainingBatch::with(
+        &pairs,
+        &rotations,
+        &residuals,
+        BatchOptions::default(),
+        &config.network,
+        &device,
+    )
+    .expect("batch");
+    let flow = batch.truth.flow.to_data().convert::<f32>().try_to_vec::<f32>().expect("floats");
+    let m = config.network.corr_points;
+    // P moved by the true flow exactly: nothing remains. Then shifted: the shift back.
+    assert!(flow[..m * 3].iter().all(|v| *v == 0.0), "{:?}", &flow[..6]);
+    for f in flow[m * 3..].chunks(3) {
+        for (v, s) in f.iter().zip(shift.iter()) {
+            assert!((v + s).abs() < 1e-6, "{f:?} against {shift:?}");
+        }
+    }
+    // Without a residual the truth is the pair's own flow, which moves P.
+    let plain = TrainingBatch::new(&pairs, &rotations, &config.network, &device).expect("batch");
+    let plain = plain.truth.flow.to_data().convert::<f32>().try_to_vec::<f32>().expect("floats");
+    assert!(plain[..m * 3].iter().any(|v| v.abs() > 1e-3));
+}
+
+#[test]
+fn the_nearest_target_is_never_farther_than_the_same_part_one() {
+    use model::train::batch::{BatchOptions, MatchingTarget, TrainingBatch};
+    use pairs::math::Matrix3;
+    let config = tiny();
+    let pairs = some_pairs(&config, 4);
+    let rotations = vec![Matrix3::identity(); 4];
+    let device = Device::flex();
+    let with = |target| {
+        TrainingBatch::with(
+            &pairs,
+            &rotations,
+            &[],
+            BatchOptions { target },
+            &config.network,
+            &device,
+        )
+        .expect("batch")
+    };
+    let (same, nearest) = (with(MatchingTarget::SamePart), with(MatchingTarget::Nearest));
+    let floats = |t: Tensor<3>| t.to_data().convert::<f32>().try_to_vec::<f32>().expect("floats");
+    let ints = |t: Tensor<2, Int>| t.to_data().convert::<i64>().try_to_vec::<i64>().expect("ints");
+    let (p, q, f) =
+        (floats(same.p()), floats(same.input.q.clone()), floats(same.truth.flow.clone()));
+    let matched = |b: &TrainingBatch| {
+        b.truth.matched.to_data().convert::<f32>().try_to_vec::<f32>().expect("floats")
+    };
+    let (ts, tn) = (ints(same.truth.targets.clone()), ints(nearest.truth.targets.clone()));
+    let (ms, mn) = (matched(&same), matched(&nearest));
+    let m = config.network.corr_points;
+    let mut differ = 0;
+    for i in 0..ts.len() {
+        let b = i / m;
+        let end: Vec<f32> = (0..3).map(|k| p[i * 3 + k] + f[i * 3 + k]).collect();
+        let d = |j: i64| -> f32 {
+            let j = (b * m + j as usize) * 3;
+            (0..3).map(|k| (q[j + k] - end[k]).powi(2)).sum()
+        };
+        assert!(mn[i] >= ms[i], "a same-part target implies a nearest one");
+        if ms[i] > 0.0 {
+            assert!(d(tn[i]) <= d(ts[i]), "point {i}");
+            differ += usize::from(tn[i] != ts[i]);
+        }
+    }
+    assert!(ms.iter().sum::<f32>() > 0.0);
+    // The two rules differ: some points' true ends lie nearer a point of the other part
+    // (11 of 128 here).
+    assert!(differ > 0, "no target differs");
+}
+
+#[test]
+fn the_stage_one_release_switches_change_the_network_and_train() {
+    use model::network::config::PairNorm;
+    use model::train::batch::TrainingBatch;
+    use model::train::objective::{stage_loss, Objective};
+    use pairs::math::Matrix3;
+    // Subsets smaller than the clouds (the tiny config's are the whole clouds), so that the
+    // backbone on the whole clouds sees more than the subsets.
+    let mut base = tiny();
+    base.network.corr_points = 16;
+    base.network.seg_points = 16;
+    let pairs = some_pairs(&base, 2);
+    let rotations = vec![Matrix3::identity(); 2];
+    let device = Device::flex().autodiff();
+    let loss_of = |config: &TrainConfig| {
+        let batch =
+            TrainingBatch::new(&pairs, &rotations, &config.network, &device).expect("batch");
+        let mut net = PartInductionNet::seeded(&config.network, &device, 7);
+        let flow = net.flow(&batch.input).expect("a flow");
+        // Output heads start at zero (uniform matching, zero flow): one step makes the
+        // loss depend on the features.
+        let mut optimizer = burn::optim::AdamConfig::new().init();
+        let (loss, _) = stage_loss(&net, &batch, 1, &Objective::default(), &[]).expect("a loss");
+        let grads = burn::optim::GradientsParams::from_grads(loss.backward(), &net);
+        let live = gradient_values(&net, &grads).iter().flatten().any(|g| *g != 0.0);
+        net = optimizer.step(1e-2, net, grads);
+        let (loss, _) = stage_loss(&net, &batch, 1, &Objective::default(), &[]).expect("a loss");
+        (flow.flow.dims(), loss.into_scalar::<f32>(), live)
+    };
+    let (dims, base_loss, live) = loss_of(&base);
+    assert_eq!(dims, [2, base.network.corr_points, 3]);
+    assert!(base_loss.is_finite() && live);
+    let n = pairs[0].input().p.len();
+    type Switch = fn(&mut TrainConfig);
+    let switches: [(&str, Switch); 3] = [
+        ("features_on_cloud", |c| c.network.features_on_cloud = true),
+        ("flow_on_cloud", |c| c.network.flow_on_cloud = true),
+        ("pair_norm", |c| c.network.pair_norm = PairNorm::Pair),
+    ];
+    for (name, switch) in switches {
+        let mut config = base.clone();
+        switch(&mut config);
+        let (dims, loss, live) = loss_of(&config);
+        assert!(loss.is_finite() && live, "{name}");
+        assert_ne!(loss, base_loss, "{name} changes nothing");
+        // The flow comes out at every point of P where the flow module carries it there.
+        let points = if name == "flow_on_cloud" { n } else { base.network.corr_points };
+        assert_eq!(dims, [2, points, 3], "{name}");
+    }
 }

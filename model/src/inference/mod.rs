@@ -200,6 +200,19 @@ impl PartInductionNet {
         input: &PairInput,
         params: &InferenceParams,
     ) -> Result<Inference, SamplingError> {
+        self.infer_from(input, params, None)
+    }
+
+    /// [`Self::infer`], with the passes started from `labels` of P (segments `0..K`) when
+    /// given: P is first moved piecewise rigidly by one motion per segment, fitted to the
+    /// network's flow of the (calibrated) first prediction, as a pass with those labels
+    /// would have moved it (diagnosis: the iterations' ceiling from the true labels).
+    pub fn infer_from(
+        &self,
+        input: &PairInput,
+        params: &InferenceParams,
+        labels: Option<&[u32]>,
+    ) -> Result<Inference, SamplingError> {
         let rotation = if params.rotation_search {
             self.search_rotation(input)?.rotation
         } else {
@@ -224,6 +237,24 @@ impl PartInductionNet {
         for _ in 0..params.global_alignments {
             let (flow, _) = calibrated(&deformed)?;
             deformed = with_p(&rotated, align_globally(&deformed.p.points, &flow));
+        }
+        if let Some(labels) = labels {
+            let (residual, _) = calibrated(&deformed)?;
+            let flow: Vec<Vector3> = deformed
+                .p
+                .points
+                .iter()
+                .zip(start)
+                .zip(&residual)
+                .map(|((moved, x), f)| moved - x + f)
+                .collect();
+            let k = labels.iter().max().map_or(0, |&m| m as usize + 1);
+            let weights = vec![1.0; labels.len()];
+            let motions = labels::fit_motions_shared_scale(start, &flow, labels, &weights, k);
+            deformed = with_p(
+                &rotated,
+                start.iter().zip(labels).map(|(x, &l)| motions[l as usize].apply(x)).collect(),
+            );
         }
         let graphs =
             params.sub_problems.then(|| (Geodesic::new(start), Geodesic::new(&input.q.points)));

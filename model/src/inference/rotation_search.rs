@@ -26,7 +26,7 @@ use burn::tensor::activation;
 use pairs::math::{Matrix3, Real, UnitQuaternion};
 use pairs::PairInput;
 
-use crate::network::input::{points_tensor, Prepared};
+use crate::network::input::{PairTensors, Prepared};
 use crate::network::predict::floats;
 use crate::network::sampling::SamplingError;
 use crate::network::PartInductionNet;
@@ -115,26 +115,29 @@ impl PartInductionNet {
     ) -> Result<Vec<Real>, SamplingError> {
         let device = self.device();
         let prep = Prepared::new(input, points, &Matrix3::identity())?;
-        let (p_m, q_m) = (prep.p_points(), prep.q_points());
-        let turned: Vec<Vec<[f32; 3]>> = rotations
+        // P turned by each rotation, its subsets kept.
+        let turned: Vec<Prepared> = rotations
             .iter()
-            .map(|r| {
-                p_m.iter()
+            .map(|r| Prepared {
+                p: prep
+                    .p
+                    .iter()
                     .map(|x| {
                         let v = r * pairs::math::Vector3::new(x[0], x[1], x[2]);
                         [v.x, v.y, v.z]
                     })
-                    .collect()
+                    .collect(),
+                ..prep.clone()
             })
             .collect();
-        let p = points_tensor(&turned, &device); // [rotations, m, 3]
-        let q = points_tensor(&vec![q_m; rotations.len()], &device); // [rotations, m, 3]
+        let tensors = PairTensors::new(&turned, self.reads_clouds(), &device); // [rotations, m, 3]
         let flow = if matching_only {
             // The expected displacement under the matching probabilities, Σ_j M_ij q_j - p_i.
-            let c = self.correspondences(p.clone(), q.clone())?;
-            activation::softmax(c.logits, 2).matmul(q) - p // [rotations, m, 3]
+            let c = self.correspondences(&tensors)?;
+            activation::softmax(c.logits, 2).matmul(tensors.q.clone()) - tensors.p
+        // [rotations, m, 3]
         } else {
-            self.flow(p, q)?.flow // [rotations, m, 3]
+            self.flow(&tensors)?.flow // [rotations, m, 3] ([rotations, n, 3] on the cloud)
         };
         Ok(floats(flow.powi_scalar(2).sum_dim(2).sqrt().mean_dim(1))) // [rotations, 1, 1]
     }

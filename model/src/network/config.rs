@@ -57,10 +57,54 @@ pub struct NetworkConfig {
     /// the authors' release).
     #[serde(default = "yes")]
     pub flow_scaled_probabilities: bool,
+    /// Whether the correspondence module's feature backbone runs on every point of both
+    /// clouds, its features then gathered at the correspondence subsets (true: the authors'
+    /// release), or on the subsets alone (false, the default).
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub features_on_cloud: bool,
+    /// Whether the flow module ends on every point of P (true: the release; its backbone's
+    /// features are carried from the subset to every point by 3-NN weights `1/d²`, then a
+    /// head gives the flow, and stage 1's flow loss covers every point of P) or on the
+    /// subset (false, the default: the flow is predicted on the subset, interpolated by
+    /// `1/d` outside the network, and the loss covers the subset's visible points).
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub flow_on_cloud: bool,
+    /// The normalisation of the pair MLPs (the correspondence module's pair MLP and score
+    /// head, the flow module's pair MLP): see [`PairNorm`].
+    #[serde(default, skip_serializing_if = "is_default")]
+    pub pair_norm: PairNorm,
+    /// Whether the correspondence mask reaches the flow module as a constant (true: the
+    /// release's `tf.stop_gradient`, so the flow loss does not train the mask) or with its
+    /// gradient (false, the default).
+    #[serde(default, skip_serializing_if = "is_false")]
+    pub flow_mask_detached: bool,
+}
+
+/// How the pair MLPs normalise each layer's output.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum PairNorm {
+    /// Layer normalisation of every entry's channels on their own (the default): after it
+    /// an entry's size no longer tells it from the others.
+    #[default]
+    Layer,
+    /// Each channel normalised by its mean and variance over one pair's `m × m` entries
+    /// (an instance norm of the pair grid): entries keep their relative size, as the
+    /// release's batch normalisation (a fixed per-channel affine map at inference) does,
+    /// with no running statistics.
+    Pair,
 }
 
 fn yes() -> bool {
     true
+}
+
+fn is_false(v: &bool) -> bool {
+    !v
+}
+
+fn is_default<T: Default + PartialEq>(v: &T) -> bool {
+    *v == T::default()
 }
 
 /// What is wrong with a config.

@@ -8,6 +8,7 @@ use burn::tensor::activation;
 
 use crate::network::backbone::Backbone;
 use crate::network::config::NetworkConfig;
+use crate::network::input::{gather_points, PairTensors};
 use crate::network::pointnet::{linear, relu_layer, Head, SharedMlp};
 use crate::network::pool::max_pool;
 use crate::network::sampling::SamplingError;
@@ -24,8 +25,15 @@ pub struct Correspondence {
 impl Correspondence {
     /// The refined matching matrix `M̂ = softmax_j(c_ij) · sigmoid(c_i)`, `[batch, m, m]`.
     pub fn refined(&self) -> Tensor<3> {
-        activation::softmax(self.logits.clone(), 2)
-            * activation::sigmoid(self.mask_logits.clone()).unsqueeze_dim::<3>(2)
+        self.refined_with(false)
+    }
+
+    /// [`Correspondence::refined`], with the mask as a constant when `mask_detached` (the
+    /// release's `tf.stop_gradient` on the visibility probability).
+    pub fn refined_with(&self, mask_detached: bool) -> Tensor<3> {
+        let mask = activation::sigmoid(self.mask_logits.clone());
+        let mask = if mask_detached { mask.detach() } else { mask };
+        activation::softmax(self.logits.clone(), 2) * mask.unsqueeze_dim::<3>(2)
     }
 }
 
@@ -38,13 +46,16 @@ pub struct CorrespondenceModule {
     pair: SharedMlp,
     score: Head,
     mask: Head,
+    /// The backbone runs on the whole clouds (`features_on_cloud`).
+    #[module(skip)]
+    on_cloud: bool,
 }
 
 impl CorrespondenceModule {
     /// The module with `config`'s sizes.
     pub fn new(config: &NetworkConfig, device: &Device) -> Self {
         let first = config.pair[0];
-        let pair = SharedMlp::new(first, &config.pair[1..], device);
+        let pair = SharedMlp::with_norm(first, &config.pair[1..], config.pair_norm, device);
         let width = pair.output(first);
         Self {
             features: config.features.init(0, config.feature_dim, false, device),
@@ -53,18 +64,44 @@ impl CorrespondenceModule {
             pair_p: relu_layer(config.feature_dim, first).init(device),
             pair_q: relu_layer(config.feature_dim, first).with_bias(false).init(device),
             pair,
-            score: Head::new(width, &config.score, 1, device),
+            score: Head::with_norm(width, &config.score, 1, config.pair_norm, device),
             mask: Head::new(width, &config.mask, 1, device),
+            on_cloud: config.features_on_cloud,
         }
     }
 
+    /// Whether the module reads the whole clouds of [`PairTensors`].
+    pub fn on_cloud(&self) -> bool {
+        self.on_cloud
+    }
+
+    /// The features are computed on the subsets, or on the whole clouds and gathered at the
+    /// subsets (`features_on_cloud`; `input.clouds` must then be present).
+    ///
     /// # Shapes
-    /// `p, q: [batch, m, 3]` -> logits `[batch, m, m]`, mask logits `[batch, m]`
-    pub fn forward(&self, p: Tensor<3>, q: Tensor<3>) -> Result<Correspondence, SamplingError> {
-        let [batch, m, _] = p.dims();
-        let both = self.features.forward(Tensor::cat(vec![p, q], 0), None)?; // [2 batch, m, d]
-        let u_p = both.clone().narrow(0, 0, batch);
-        let u_q = both.narrow(0, batch, batch);
+    /// `input.p, input.q: [batch, m, 3]` -> logits `[batch, m, m]`, mask logits `[batch, m]`
+    pub fn forward(&self, input: &PairTensors) -> Result<Correspondence, SamplingError> {
+        let [batch, m, _] = input.p.dims();
+        let (u_p, u_q) = match (&input.clouds, self.on_cloud) {
+            (Some(clouds), true) => {
+                let both = self
+                    .features
+                    .forward(Tensor::cat(vec![clouds.p.clone(), clouds.q.clone()], 0), None)?; // [2 batch, n, d]
+                let f_p = both.clone().narrow(0, 0, batch);
+                let f_q = both.narrow(0, batch, batch);
+                (
+                    gather_points(f_p, clouds.p_subset.clone()),
+                    gather_points(f_q, clouds.q_subset.clone()),
+                )
+            }
+            (None, true) => return Err(SamplingError::NoClouds),
+            _ => {
+                let both = self
+                    .features
+                    .forward(Tensor::cat(vec![input.p.clone(), input.q.clone()], 0), None)?; // [2 batch, m, d]
+                (both.clone().narrow(0, 0, batch), both.narrow(0, batch, batch))
+            }
+        };
         let a = linear(&self.pair_p, u_p).unsqueeze_dim::<4>(2); // [batch, m, 1, w]
         let b = linear(&self.pair_q, u_q).unsqueeze_dim::<4>(1); // [batch, 1, m, w]
         let h = self.pair.forward(activation::relu(a + b)); // [batch, m, m, w]

@@ -49,6 +49,66 @@ impl Prepared {
     }
 }
 
+/// A batch of pairs as the correspondence and flow modules read it: the subsets' points and,
+/// for the modules that run on every point (`features_on_cloud`, `flow_on_cloud`), the whole
+/// clouds with the subsets' places in them.
+#[derive(Debug, Clone)]
+pub struct PairTensors {
+    /// P's correspondence subsets, `[batch, m, 3]`.
+    pub p: Tensor<3>,
+    /// Q's correspondence subsets, `[batch, m, 3]`.
+    pub q: Tensor<3>,
+    /// The whole clouds, when a module needs them.
+    pub clouds: Option<Clouds>,
+}
+
+/// Whole clouds of a batch and where its subsets sit in them.
+#[derive(Debug, Clone)]
+pub struct Clouds {
+    /// Every point of P, `[batch, n, 3]`.
+    pub p: Tensor<3>,
+    /// Every point of Q, `[batch, n, 3]`.
+    pub q: Tensor<3>,
+    /// Index into P of each subset point, `[batch, m]`.
+    pub p_subset: Tensor<2, Int>,
+    /// Index into Q of each subset point, `[batch, m]`.
+    pub q_subset: Tensor<2, Int>,
+}
+
+impl PairTensors {
+    /// The tensors of `prepared` pairs (the whole clouds too when `with_clouds`; every pair
+    /// must then have as many points as the first).
+    pub fn new(prepared: &[Prepared], with_clouds: bool, device: &Device) -> Self {
+        let p: Vec<_> = prepared.iter().map(Prepared::p_points).collect();
+        let q: Vec<_> = prepared.iter().map(Prepared::q_points).collect();
+        let clouds = with_clouds.then(|| {
+            let indices = |pick: fn(&Prepared) -> &Vec<usize>| {
+                let m = prepared.first().map_or(0, |x| pick(x).len());
+                let flat: Vec<i64> =
+                    prepared.iter().flat_map(|x| pick(x).iter().map(|&i| i as i64)).collect();
+                Tensor::<2, Int>::from_data(TensorData::new(flat, [prepared.len(), m]), device)
+            };
+            let whole_p: Vec<_> = prepared.iter().map(|x| x.p.clone()).collect();
+            let whole_q: Vec<_> = prepared.iter().map(|x| x.q.clone()).collect();
+            Clouds {
+                p: points_tensor(&whole_p, device),
+                q: points_tensor(&whole_q, device),
+                p_subset: indices(|x| &x.p_subset),
+                q_subset: indices(|x| &x.q_subset),
+            }
+        });
+        Self { p: points_tensor(&p, device), q: points_tensor(&q, device), clouds }
+    }
+}
+
+/// Rows `indices` of `x` per batch entry: `x: [batch, n, c]`, `indices: [batch, m]` ->
+/// `[batch, m, c]` (gradients reach the gathered rows).
+pub fn gather_points(x: Tensor<3>, indices: Tensor<2, Int>) -> Tensor<3> {
+    let [batch, m] = indices.dims();
+    let c = x.dims()[2];
+    x.gather(1, indices.unsqueeze_dim::<3>(2).expand([batch, m, c]))
+}
+
 /// `[batch, m, 3]` from point lists of equal length.
 pub fn points_tensor(clouds: &[Vec<[f32; 3]>], device: &Device) -> Tensor<3> {
     let m = clouds.first().map_or(0, Vec::len);

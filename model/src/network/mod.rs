@@ -28,6 +28,7 @@ use burn::tensor::activation;
 use crate::network::config::NetworkConfig;
 use crate::network::correspondence::{Correspondence, CorrespondenceModule};
 use crate::network::flow::FlowModule;
+use crate::network::input::PairTensors;
 use crate::network::sampling::SamplingError;
 use crate::network::segmentation::hypotheses::{Hypotheses, HypothesisModule};
 use crate::network::segmentation::rpen::{RpenModule, Segments};
@@ -54,7 +55,8 @@ pub struct PartInductionNet {
 pub struct FlowOutput {
     /// Matching logits and correspondence mask.
     pub correspondence: Correspondence,
-    /// Flow on the correspondence subset of P, `[batch, m, 3]`.
+    /// Flow on the correspondence subset of P, `[batch, m, 3]` (on every point of P,
+    /// `[batch, n, 3]`, with `flow_on_cloud`).
     pub flow: Tensor<3>,
 }
 
@@ -139,26 +141,62 @@ impl PartInductionNet {
         }
     }
 
-    /// Correspondences and flow on the correspondence subsets of P and Q.
+    /// Correspondences on the correspondence subsets of P and Q, and the flow (on P's subset,
+    /// or on every point of P with `flow_on_cloud`).
     ///
     /// # Shapes
-    /// `p, q: [batch, m, 3]`
-    pub fn flow(&self, p: Tensor<3>, q: Tensor<3>) -> Result<FlowOutput, SamplingError> {
-        let correspondence = self.correspondence.forward(p.clone(), q.clone())?;
-        let flow = self.flow.forward(p, q, correspondence.refined())?;
+    /// `input.p, input.q: [batch, m, 3]`
+    pub fn flow(&self, input: &PairTensors) -> Result<FlowOutput, SamplingError> {
+        let correspondence = self.correspondence.forward(input)?;
+        let matching = correspondence.refined_with(self.flow.mask_detached());
+        let flow = self.flow.forward(input, matching)?;
         Ok(FlowOutput { correspondence, flow })
+    }
+
+    /// The flow module fed `matching` (`[batch, m, m]`, as [`Correspondence::refined`]
+    /// gives it) instead of the correspondence module's: an oracle substitute for diagnosis.
+    pub fn flow_given_matching(
+        &self,
+        input: &PairTensors,
+        matching: Tensor<3>,
+    ) -> Result<Tensor<3>, SamplingError> {
+        self.flow.forward(input, matching)
     }
 
     /// The correspondence module alone: matching logits and mask on the subsets.
     ///
     /// # Shapes
-    /// `p, q: [batch, m, 3]`
-    pub fn correspondences(
+    /// `input.p, input.q: [batch, m, 3]`
+    pub fn correspondences(&self, input: &PairTensors) -> Result<Correspondence, SamplingError> {
+        self.correspondence.forward(input)
+    }
+
+    /// Whether the network reads whole clouds (`features_on_cloud` or `flow_on_cloud`):
+    /// its inputs must then carry them ([`PairTensors::new`]).
+    pub fn reads_clouds(&self) -> bool {
+        self.correspondence.on_cloud() || self.flow.on_cloud()
+    }
+
+    /// The flow module's output on P's correspondence subset: itself, or (with
+    /// `flow_on_cloud`) gathered there from every point of P.
+    ///
+    /// # Shapes
+    /// `flow: [batch, m, 3]` or `[batch, n, 3]` -> `[batch, m, 3]`
+    pub fn flow_at_subset(
         &self,
-        p: Tensor<3>,
-        q: Tensor<3>,
-    ) -> Result<Correspondence, SamplingError> {
-        self.correspondence.forward(p, q)
+        input: &PairTensors,
+        flow: Tensor<3>,
+    ) -> Result<Tensor<3>, SamplingError> {
+        if !self.flow.on_cloud() {
+            return Ok(flow);
+        }
+        let clouds = input.clouds.as_ref().ok_or(SamplingError::NoClouds)?;
+        Ok(input::gather_points(flow, clouds.p_subset.clone()))
+    }
+
+    /// Whether the flow comes out on every point of P (`flow_on_cloud`).
+    pub fn flow_on_cloud(&self) -> bool {
+        self.flow.on_cloud()
     }
 
     /// Hypotheses and support on the first s points of P given a flow, and `steps` RPEN

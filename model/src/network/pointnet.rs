@@ -12,11 +12,14 @@
 
 use burn::nn::{Initializer, LayerNorm, LayerNormConfig, Linear, LinearConfig};
 use burn::prelude::*;
-use burn::tensor::TensorData;
+use burn::tensor::{activation, TensorData};
 
-use crate::network::norm::linear_norm_relu;
+use crate::network::config::PairNorm;
+use crate::network::norm::{linear_norm_relu, EPSILON};
 use crate::network::pool::max_pool;
-use crate::network::sampling::{ball_query, farthest_point_sampling, three_nn, SamplingError};
+use crate::network::sampling::{
+    ball_query, farthest_point_sampling, three_nn_weighted, SamplingError,
+};
 
 /// A `Linear` layer that feeds a ReLU, initialised after He et al. (variance `2 / fan_in`)
 /// so that activations keep their scale through deep stacks without batch normalisation
@@ -62,16 +65,26 @@ pub fn linear<const D: usize>(layer: &Linear, x: Tensor<D>) -> Tensor<D> {
 pub struct SharedMlp {
     layers: Vec<Linear>,
     norms: Vec<LayerNorm>,
+    /// Normalise over a pair's grid of entries instead of each entry's channels
+    /// ([`PairNorm::Pair`]; the parameters are the same, `γ` and `β` per channel).
+    #[module(skip)]
+    pair_norm: bool,
 }
 
 impl SharedMlp {
     /// Layers of `widths` after an input of `input` channels.
     pub fn new(input: usize, widths: &[usize], device: &Device) -> Self {
+        Self::with_norm(input, widths, PairNorm::Layer, device)
+    }
+
+    /// Like [`SharedMlp::new`] with the normalisation `norm` (which only changes a pair MLP
+    /// on `[batch, m, m, channels]` inputs).
+    pub fn with_norm(input: usize, widths: &[usize], norm: PairNorm, device: &Device) -> Self {
         let dims = std::iter::once(input).chain(widths.iter().copied());
         let layers =
             dims.clone().zip(widths.iter()).map(|(a, &b)| relu_layer(a, b).init(device)).collect();
         let norms = widths.iter().map(|&w| LayerNormConfig::new(w).init(device)).collect();
-        Self { layers, norms }
+        Self { layers, norms, pair_norm: norm == PairNorm::Pair }
     }
 
     /// Output channels (the input's if there are no layers).
@@ -84,11 +97,35 @@ impl SharedMlp {
     /// # Shapes
     /// `[..., input]` -> `[..., output]`
     pub fn forward<const D: usize>(&self, x: Tensor<D>) -> Tensor<D> {
+        if self.pair_norm && D == 4 {
+            return self.layers.iter().zip(&self.norms).fold(x, |x, (layer, norm)| {
+                activation::relu(pair_normalised(linear(layer, x), norm))
+            });
+        }
         self.layers
             .iter()
             .zip(&self.norms)
             .fold(x, |x, (layer, norm)| linear_norm_relu(layer, norm, x))
     }
+}
+
+/// `γ (y - mean) / sqrt(var + ε) + β` with each channel's mean and variance taken over
+/// dimensions 1 and 2 (one pair's `m × m` entries) of `y: [batch, m, m, c]`, as one
+/// reduction over the flattened `m²` entries.
+fn pair_normalised<const D: usize>(y: Tensor<D>, norm: &LayerNorm) -> Tensor<D> {
+    let dims = y.dims();
+    let (b, c) = (dims[0], dims[D - 1]);
+    let flat: Tensor<3> = y.reshape([b as i32, -1, c as i32]);
+    let mean = flat.clone().mean_dim(1);
+    let centred = flat - mean;
+    let var = (centred.clone() * centred.clone()).mean_dim(1);
+    let gamma = norm.gamma.val().reshape([1, 1, c]);
+    let scaled = centred * ((var + EPSILON).sqrt().recip() * gamma);
+    let out = match &norm.beta {
+        Some(beta) => scaled + beta.val().reshape([1, 1, c]),
+        None => scaled,
+    };
+    out.reshape(dims)
 }
 
 /// A shared MLP (`Linear` + ReLU layers) ending in one `Linear` layer without activation:
@@ -116,6 +153,21 @@ impl Head {
     /// heads whose outputs feed further layers (features).
     pub fn dense(input: usize, widths: &[usize], output: usize, device: &Device) -> Self {
         Self::with_output(input, widths, LinearConfig::new(0, output), device)
+    }
+
+    /// Like [`Head::new`] with the hidden layers normalised by `norm` (a pair head).
+    pub fn with_norm(
+        input: usize,
+        widths: &[usize],
+        output: usize,
+        norm: PairNorm,
+        device: &Device,
+    ) -> Self {
+        let hidden = SharedMlp::with_norm(input, widths, norm, device);
+        let out = LinearConfig::new(hidden.output(input), output)
+            .with_initializer(Initializer::Zeros)
+            .init(device);
+        Self { hidden, out }
     }
 
     fn with_output(input: usize, widths: &[usize], out: LinearConfig, device: &Device) -> Self {
@@ -322,26 +374,42 @@ impl FeaturePropagation {
         skip: Option<Tensor<3>>,
         features: Tensor<3>,
     ) -> Result<Tensor<3>, SamplingError> {
-        let [batch, n, _] = dense.dims();
-        let [_, m, channels] = features.dims();
-        let (targets, sources) = (point_lists(&dense), point_lists(&coarse));
-        let mut idx = Vec::with_capacity(batch * n * 3);
-        let mut weights = Vec::with_capacity(batch * n * 3);
-        for (b, (t, s)) in targets.iter().zip(&sources).enumerate() {
-            let (i, w) = three_nn(t, s)?;
-            idx.extend(i.into_iter().map(|i| i + b * m));
-            weights.extend(w);
-        }
-        let device = dense.device();
-        let neighbours = gather_rows(features, &idx, &device).reshape([batch, n, 3, channels]); // [batch, n, 3, c2]
-        let weights = Tensor::<4>::from_data(TensorData::new(weights, [batch, n, 3, 1]), &device);
-        let interpolated = (neighbours * weights).sum_dim(2).squeeze_dim::<3>(2); // [batch, n, c2]
+        let interpolated = interpolate_features(&dense, &coarse, features, 1)?;
         let input = match skip {
             Some(s) => Tensor::cat(vec![s, interpolated], 2),
             None => interpolated,
         };
         Ok(self.mlp.forward(input))
     }
+}
+
+/// `features` of the `coarse` points carried to the `dense` ones by their 3 nearest coarse
+/// points, weighted by `1/d` (`power` 1, every propagation layer of the backbones) or `1/d²`
+/// (`power` 2, the release's `three_interpolate` on its squared distances).
+///
+/// # Shapes
+/// `dense: [batch, n, 3]`, `coarse: [batch, m, 3]`, `features: [batch, m, c]` ->
+/// `[batch, n, c]`
+pub(crate) fn interpolate_features(
+    dense: &Tensor<3>,
+    coarse: &Tensor<3>,
+    features: Tensor<3>,
+    power: i32,
+) -> Result<Tensor<3>, SamplingError> {
+    let [batch, n, _] = dense.dims();
+    let [_, m, channels] = features.dims();
+    let (targets, sources) = (point_lists(dense), point_lists(coarse));
+    let mut idx = Vec::with_capacity(batch * n * 3);
+    let mut weights = Vec::with_capacity(batch * n * 3);
+    for (b, (t, s)) in targets.iter().zip(&sources).enumerate() {
+        let (i, w) = three_nn_weighted(t, s, power)?;
+        idx.extend(i.into_iter().map(|i| i + b * m));
+        weights.extend(w);
+    }
+    let device = dense.device();
+    let neighbours = gather_rows(features, &idx, &device).reshape([batch, n, 3, channels]); // [batch, n, 3, c]
+    let weights = Tensor::<4>::from_data(TensorData::new(weights, [batch, n, 3, 1]), &device);
+    Ok((neighbours * weights).sum_dim(2).squeeze_dim::<3>(2))
 }
 
 /// The clouds of a batch as point lists, for the index computations.

@@ -13,8 +13,8 @@ use pairs::segments::complete_prediction;
 use pairs::{PairInput, Prediction};
 
 use crate::inference::labels::{segment_pair, HardLabelParams};
-use crate::network::input::{points_tensor, Prepared};
-use crate::network::sampling::{three_nn, SamplingError};
+use crate::network::input::{points_tensor, PairTensors, Prepared};
+use crate::network::sampling::{distance2, three_nn, SamplingError};
 use crate::network::PartInductionNet;
 
 /// A tensor's values as f32.
@@ -66,14 +66,50 @@ impl PartInductionNet {
     pub fn flow_pass(&self, input: &PairInput) -> Result<(Vec<Vector3>, Vec<f32>), SamplingError> {
         let device = self.device();
         let prep = Prepared::new(input, self.corr_points(), &Matrix3::identity())?;
-        let (p_m, q_m) = (prep.p_points(), prep.q_points());
-        let p = points_tensor(std::slice::from_ref(&p_m), &device);
-        let q = points_tensor(&[q_m], &device);
-        let out = self.flow(p, q)?;
+        let p_m = prep.p_points();
+        let tensors = PairTensors::new(std::slice::from_ref(&prep), self.reads_clouds(), &device);
+        let out = self.flow(&tensors)?;
         let mask = floats(activation::sigmoid(out.correspondence.mask_logits));
-        let flow = interpolate(&prep.p, &p_m, &floats(out.flow), 3)?;
+        let flow = if self.flow_on_cloud() {
+            floats(out.flow)
+        } else {
+            interpolate(&prep.p, &p_m, &floats(out.flow), 3)?
+        };
         let flow = flow.chunks(3).map(|f| Vector3::new(f[0], f[1], f[2])).collect();
         Ok((flow, interpolate(&prep.p, &p_m, &mask, 1)?))
+    }
+
+    /// The flow module's flow on every point of P fed the matching that sends each subset
+    /// point of P to its nearest point of Q's subset after the true flow `truth` (one-hot
+    /// rows, times the true correspondence mask `visible`) instead of the correspondence
+    /// module's: whether the flow module can read offsets at all (diagnosis).
+    pub fn flow_given_true_matching(
+        &self,
+        input: &PairInput,
+        truth: &[Vector3],
+        visible: &[bool],
+    ) -> Result<Vec<Vector3>, SamplingError> {
+        let device = self.device();
+        let prep = Prepared::new(input, self.corr_points(), &Matrix3::identity())?;
+        let (p_m, q_m) = (prep.p_points(), prep.q_points());
+        let m = p_m.len();
+        let mut matching = vec![0.0f32; m * m];
+        for (row, &i) in prep.p_subset.iter().enumerate() {
+            if !visible.get(i).copied().unwrap_or(false) {
+                continue;
+            }
+            let f = truth.get(i).copied().unwrap_or_else(Vector3::zeros);
+            let moved = [prep.p[i][0] + f.x, prep.p[i][1] + f.y, prep.p[i][2] + f.z];
+            let j = (0..m)
+                .min_by(|&a, &b| distance2(&q_m[a], &moved).total_cmp(&distance2(&q_m[b], &moved)))
+                .unwrap_or(0);
+            matching[row * m + j] = 1.0;
+        }
+        let tensors = PairTensors::new(std::slice::from_ref(&prep), self.reads_clouds(), &device);
+        let matching = Tensor::<1>::from_floats(matching.as_slice(), &device).reshape([1, m, m]);
+        let flow = floats(self.flow_given_matching(&tensors, matching)?);
+        let flow = if self.flow_on_cloud() { flow } else { interpolate(&prep.p, &p_m, &flow, 3)? };
+        Ok(flow.chunks(3).map(|f| Vector3::new(f[0], f[1], f[2])).collect())
     }
 
     /// The flows the correspondence module's matching alone implies, on every point of P:
@@ -88,9 +124,9 @@ impl PartInductionNet {
         let prep = Prepared::new(input, self.corr_points(), &Matrix3::identity())?;
         let (p_m, q_m) = (prep.p_points(), prep.q_points());
         let m = p_m.len();
-        let p = points_tensor(std::slice::from_ref(&p_m), &device);
-        let q = points_tensor(std::slice::from_ref(&q_m), &device);
-        let c = self.correspondences(p.clone(), q.clone())?;
+        let tensors = PairTensors::new(std::slice::from_ref(&prep), self.reads_clouds(), &device);
+        let c = self.correspondences(&tensors)?;
+        let (p, q) = (tensors.p, tensors.q);
         let probs = activation::softmax(c.logits, 2); // [1, m, m]
         let soft = floats(probs.clone().matmul(q) - p);
         let probs = floats(probs);

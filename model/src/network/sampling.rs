@@ -25,6 +25,10 @@ pub enum SamplingError {
     /// A training pair has no true flow: a cross-instance pair (XF2F, XF2P).
     #[error("pair {0} has no true flow (a cross-instance pair); training needs SF2F, SF2P or SP2P pairs")]
     NoFlow(String),
+    /// A module that runs on every point (`features_on_cloud`, `flow_on_cloud`) was given
+    /// only the subsets.
+    #[error("the network runs on whole clouds (features_on_cloud or flow_on_cloud) but was given only the subsets")]
+    NoClouds,
 }
 
 use pairs::math::Point3;
@@ -75,6 +79,16 @@ pub fn three_nn(
     targets: &[[f32; 3]],
     sources: &[[f32; 3]],
 ) -> Result<(Vec<usize>, Vec<f32>), SamplingError> {
+    three_nn_weighted(targets, sources, 1)
+}
+
+/// [`three_nn`] with weights `1/d^power` (normalised to sum 1): `power` 1 is [`three_nn`],
+/// 2 the weights of the release's `three_interpolate`, which takes the squared distances.
+pub fn three_nn_weighted(
+    targets: &[[f32; 3]],
+    sources: &[[f32; 3]],
+    power: i32,
+) -> Result<(Vec<usize>, Vec<f32>), SamplingError> {
     if sources.len() < 3 {
         return Err(SamplingError::TooFewPoints { wanted: 3, points: sources.len() });
     }
@@ -90,7 +104,13 @@ pub fn three_nn(
             }
         }
         // 1e-8 as in the authors' kernel: a target on a source takes (almost) all its weight.
-        let inverse = best.map(|(d, _)| 1.0 / (d.sqrt() + 1e-8));
+        let inverse = best.map(|(d, _)| {
+            if power == 1 {
+                1.0 / (d.sqrt() + 1e-8)
+            } else {
+                1.0 / (d.sqrt().powi(power) + 1e-8)
+            }
+        });
         let total: f32 = inverse.iter().sum();
         indices.extend(best.map(|(_, i)| i));
         weights.extend(inverse.map(|w| w / total));

@@ -12,6 +12,7 @@ use serde::{Deserialize, Serialize};
 use crate::network::config::invalid;
 pub use crate::network::config::{ConfigError, NetworkConfig};
 pub use crate::network::NetModule;
+pub use crate::train::batch::MatchingTarget;
 
 /// Points of P and Q per training pair, and how the trainer feeds and schedules them.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -104,6 +105,31 @@ pub struct TrainConfig {
     /// each full pair; the paper's mix is 5, and 0 (the default) trains on full shapes only.
     #[serde(default)]
     pub scanned_per_pair: u32,
+    /// The matching loss's target: the nearest point of Q's subset of the same part
+    /// (`same-part`, the default) or the nearest whatever its part (`nearest`, the release).
+    #[serde(default, skip_serializing_if = "is_default")]
+    pub matching_target: MatchingTarget,
+    /// Whether the stream gives each cloud of a pair its own global pose (true, the default:
+    /// a rotation of up to 15° and a translation each, so P and Q differ by a relative pose
+    /// besides the articulation) or none (false: the release's stage-1 pairs, whose clouds
+    /// differ by the articulation alone before the shared augmentation rotation). Each cloud
+    /// is still normalised on its own.
+    #[serde(default = "yes", skip_serializing_if = "is_true")]
+    pub relative_pose: bool,
+    /// Share of the pairs, drawn per pair from the seed, turned into residual pairs: P
+    /// replaced by P moved by its true part motions and then by a small random rigid motion
+    /// (rotation up to `residual_rotation_deg` about a random axis through the origin,
+    /// translation up to `residual_translation` along each axis), so the flow to learn is
+    /// what the iterations leave (0, the default: none).
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub residual_pairs: f64,
+    /// Largest rotation of a residual pair's perturbation, degrees.
+    #[serde(default = "residual_rotation", skip_serializing_if = "is_residual_rotation")]
+    pub residual_rotation_deg: f64,
+    /// Largest translation of a residual pair's perturbation along each axis, normalised
+    /// units.
+    #[serde(default = "residual_translation", skip_serializing_if = "is_residual_translation")]
+    pub residual_translation: f64,
     /// Seed of the training stream and the augmentation.
     pub seed: u64,
     /// Pairs in the fixed validation set (validation categories; a quarter each of SF2P and
@@ -132,6 +158,38 @@ pub enum Schedule {
     Step,
     /// Per stage: linear warm-up over `warmup_pairs`, then a half cosine down to the floor.
     Cosine,
+}
+
+fn yes() -> bool {
+    true
+}
+
+fn is_true(v: &bool) -> bool {
+    *v
+}
+
+fn is_zero(v: &f64) -> bool {
+    *v == 0.0
+}
+
+fn is_default<T: Default + PartialEq>(v: &T) -> bool {
+    *v == T::default()
+}
+
+fn residual_rotation() -> f64 {
+    5.0
+}
+
+fn is_residual_rotation(v: &f64) -> bool {
+    *v == residual_rotation()
+}
+
+fn residual_translation() -> f64 {
+    0.02
+}
+
+fn is_residual_translation(v: &f64) -> bool {
+    *v == residual_translation()
 }
 
 fn half() -> f32 {
@@ -220,6 +278,15 @@ impl TrainConfig {
         }
         if !(0.0..=1.0).contains(&self.stage3_true_flow) {
             return Err(invalid("stage3_true_flow", "must be in [0, 1]"));
+        }
+        if !(0.0..=1.0).contains(&self.residual_pairs) {
+            return Err(invalid("residual_pairs", "must be in [0, 1]"));
+        }
+        if !(0.0..=180.0).contains(&self.residual_rotation_deg) {
+            return Err(invalid("residual_rotation_deg", "must be in [0, 180]"));
+        }
+        if !(self.residual_translation >= 0.0 && self.residual_translation.is_finite()) {
+            return Err(invalid("residual_translation", "must be finite and non-negative"));
         }
         if self.decay_every_pairs == 0 || self.validate_every_pairs == 0 {
             return Err(invalid("decay_every_pairs", "pair counts must be positive"));

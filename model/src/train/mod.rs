@@ -40,8 +40,8 @@ pub mod plot;
 mod step;
 pub mod validation;
 
-pub use step::batch_gradients;
-use step::{augmentation, fed_true_flow};
+use step::{augmentation, fed_true_flow, residual};
+pub use step::{batch_gradients, Draws};
 
 /// Why training stopped early.
 #[derive(Debug, thiserror::Error)]
@@ -142,7 +142,16 @@ pub fn stream_config(config: &TrainConfig) -> GeneratorConfig {
         states_per_object: 2,
         pairs_per_object: 1,
         scanned_per_pair: config.scanned_per_pair,
-        ..GeneratorConfig::training()
+        ..pose_of(config, GeneratorConfig::training())
+    }
+}
+
+/// `base` without the global poses when the config trains without a relative pose.
+fn pose_of(config: &TrainConfig, base: GeneratorConfig) -> GeneratorConfig {
+    if config.relative_pose {
+        base
+    } else {
+        GeneratorConfig { pose_rotation_deg: 0.0, pose_translation: 0.0, ..base }
     }
 }
 
@@ -292,13 +301,13 @@ impl Trainer {
         let stage = self.config.stage_at(self.state.pairs);
         let true_flow: Vec<bool> =
             (0..pairs.len()).map(|i| fed_true_flow(&self.config, step, i)).collect();
+        let residuals: Vec<_> = (0..pairs.len()).map(|i| residual(&self.config, step, i)).collect();
         let (value, terms, grads, mut phases) = batch_gradients(
             &self.net,
             &self.config,
             &self.device,
             &pairs,
-            &rotations,
-            &true_flow,
+            Draws { rotations: &rotations, true_flow: &true_flow, residuals: &residuals },
             stage,
         )
         .map_err(|source| TrainError::Batch { step, source })?;

@@ -166,10 +166,11 @@ pub fn stage_loss(
         truth.flow.clone()
     } else if rpen_only {
         // The release's stage 3: every module before the RPEN runs as a constant.
-        let predicted = net.flow(batch.p.clone(), batch.q.clone())?.flow.detach();
+        let predicted = net.flow(&batch.input)?.flow.detach();
+        let predicted = net.flow_at_subset(&batch.input, predicted)?;
         mix_true_flow(predicted, truth.flow.clone(), true_flow)
     } else {
-        let out = net.flow(batch.p.clone(), batch.q.clone())?;
+        let out = net.flow(&batch.input)?;
         let c = out.correspondence;
         let corr = correspondence_loss(
             c.logits,
@@ -179,20 +180,29 @@ pub fn stage_loss(
             truth.visible.clone(),
         );
         sum.add(corr, 1.0, |t| &mut t.correspondence);
-        sum.add(flow_loss(out.flow.clone(), truth.flow.clone(), truth.visible.clone()), 1.0, |t| {
-            &mut t.flow
-        });
+        let flow_term = match &truth.flow_cloud {
+            // The release's loss: every point of P (its true flow is defined whether or not
+            // Q sees it).
+            Some(cloud) if net.flow_on_cloud() => {
+                let [b, n, _] = cloud.dims();
+                let every = Tensor::<2>::ones([b, n], &cloud.device());
+                flow_loss(out.flow.clone(), cloud.clone(), every)
+            }
+            _ => flow_loss(out.flow.clone(), truth.flow.clone(), truth.visible.clone()),
+        };
+        sum.add(flow_term, 1.0, |t| &mut t.flow);
         if stage == 1 {
             return Ok((sum.total.expect("two terms"), sum.terms));
         }
         let predicted = if end_to_end { out.flow } else { out.flow.detach() };
+        let predicted = net.flow_at_subset(&batch.input, predicted)?;
         mix_true_flow(predicted, truth.flow.clone(), true_flow)
     };
     let steps =
         if stage == 3 { truth.parts_per_pair.iter().copied().max().unwrap_or(1) + 2 } else { 0 };
     let detached =
         Detached { hypotheses: objective.detach_hypotheses || rpen_only, support: rpen_only };
-    let seg = net.segment_with(batch.p.clone(), flow, steps, detached)?;
+    let seg = net.segment_with(batch.p(), flow, steps, detached)?;
     if rpen_only {
         let segments = seg.segments.expect("stage 3 asks for RPEN steps");
         sum.add(segment_loss(segments.segments, truth.parts.clone()), 1.0, |t| &mut t.segment);
@@ -201,9 +211,9 @@ pub fn stage_loss(
         });
         return Ok((sum.total.expect("two terms"), sum.terms));
     }
-    let [b, _, _] = batch.p.dims();
+    let [b, _, _] = batch.input.p.dims();
     let s = net.seg_points();
-    let p_s = batch.p.clone().slice([0..b, 0..s]);
+    let p_s = batch.p().slice([0..b, 0..s]);
     let q_s = p_s.clone() + truth.flow.clone().slice([0..b, 0..s]);
     let visible_s = truth.visible.clone().slice([0..b, 0..s]);
     let motion = motion_loss(

@@ -7,7 +7,7 @@ use std::time::Instant;
 use burn::module::{ModuleMapper, Param};
 use burn::optim::{GradientsAccumulator, GradientsParams};
 use burn::prelude::*;
-use pairs::math::{Matrix3, Rotation3, Vector3};
+use pairs::math::{Isometry3, Matrix3, Rotation3, Vector3};
 use pairs::Pair;
 use rand::{Rng, SeedableRng};
 use rand_chacha::ChaCha8Rng;
@@ -15,7 +15,7 @@ use rayon::prelude::*;
 
 use crate::network::sampling::SamplingError;
 use crate::network::PartInductionNet;
-use crate::train::batch::TrainingBatch;
+use crate::train::batch::{BatchOptions, TrainingBatch};
 use crate::train::config::TrainConfig;
 use crate::train::log::StepPhases;
 use crate::train::objective::{stage_loss, LossTerms, Objective};
@@ -52,6 +52,52 @@ pub(super) fn fed_true_flow(config: &TrainConfig, step: u64, index: usize) -> bo
     rng.random_bool(config.stage3_true_flow.min(1.0))
 }
 
+/// The residual perturbation of pair `index` of step `step`, if the draw (probability
+/// `residual_pairs`, from its own stream of the seed) makes it a residual pair: a rotation
+/// uniform in `[0, residual_rotation_deg]` about a random axis and a translation uniform in
+/// `±residual_translation` per axis.
+pub(super) fn residual(config: &TrainConfig, step: u64, index: usize) -> Option<Isometry3> {
+    if config.residual_pairs <= 0.0 {
+        return None;
+    }
+    let mut rng = ChaCha8Rng::seed_from_u64(config.seed ^ step.wrapping_mul(0xA24B_AED4_963E_E407));
+    rng.set_stream(index as u64);
+    if !rng.random_bool(config.residual_pairs.min(1.0)) {
+        return None;
+    }
+    let axis = loop {
+        let v = Vector3::new(
+            rng.random_range(-1.0f32..1.0),
+            rng.random_range(-1.0f32..1.0),
+            rng.random_range(-1.0f32..1.0),
+        );
+        let n = v.norm();
+        if n > 0.1 && n <= 1.0 {
+            break v / n;
+        }
+    };
+    let angle = rng.random_range(0.0..=config.residual_rotation_deg as f32).to_radians();
+    let t = config.residual_translation as f32;
+    let shift = if t > 0.0 {
+        Vector3::new(rng.random_range(-t..=t), rng.random_range(-t..=t), rng.random_range(-t..=t))
+    } else {
+        Vector3::zeros()
+    };
+    Some(Isometry3::new(shift, axis * angle))
+}
+
+/// What a step drew for each pair of its batch (entries missing from `true_flow` and
+/// `residuals`: off).
+#[derive(Debug, Clone, Copy)]
+pub struct Draws<'a> {
+    /// The augmentation rotation of each pair.
+    pub rotations: &'a [Matrix3],
+    /// Which pairs feed the segmentation module the true flow ([`fed_true_flow`]).
+    pub true_flow: &'a [bool],
+    /// Which pairs are residual pairs, with their perturbation ([`residual`]).
+    pub residuals: &'a [Option<Isometry3>],
+}
+
 /// The loss of a batch, its terms, the gradients and the time of each phase (the optimiser's
 /// left at zero, for the caller): the whole batch at once, or split
 /// into `replicas` equal shards run on their own threads, each on a replica of the
@@ -63,21 +109,23 @@ pub fn batch_gradients(
     config: &TrainConfig,
     device: &Device,
     pairs: &[Pair],
-    rotations: &[Matrix3],
-    true_flow: &[bool],
+    draws: Draws<'_>,
     stage: u8,
 ) -> Result<(f32, LossTerms, GradientsParams, StepPhases), SamplingError> {
+    let Draws { rotations, true_flow, residuals } = draws;
+    let options = BatchOptions { target: config.matching_target };
     let shards = config.replicas.clamp(1, pairs.len().max(1));
     // One shard: its batch, forward pass and loss, and backward pass (the loss scaled by
     // `share`), each timed.
     let run = |net: &PartInductionNet,
                pairs: &[Pair],
                rotations: &[Matrix3],
-               marks: &[bool],
+               (marks, residuals): (&[bool], &[Option<Isometry3>]),
                share: f32| {
         let mut phases = StepPhases::default();
         let clock = Instant::now();
-        let batch = TrainingBatch::new(pairs, rotations, &config.network, device)?;
+        let batch =
+            TrainingBatch::with(pairs, rotations, residuals, options, &config.network, device)?;
         phases.batch = clock.elapsed().as_secs_f64();
         let clock = Instant::now();
         let (loss, terms) = stage_loss(net, &batch, stage, &Objective::of(config), marks)?;
@@ -89,7 +137,7 @@ pub fn batch_gradients(
         Ok::<_, SamplingError>((value, terms, grads, phases))
     };
     if shards == 1 {
-        return run(net, pairs, rotations, true_flow, 1.0);
+        return run(net, pairs, rotations, (true_flow, residuals), 1.0);
     }
     let size = pairs.len().div_ceil(shards);
     let jobs: Vec<_> = pairs
@@ -98,7 +146,8 @@ pub fn batch_gradients(
         .enumerate()
         .map(|(k, (chunk, rots))| {
             let marks = true_flow.get(k * size..).unwrap_or(&[]);
-            (net.clone().map(&mut FreshLeaves), chunk, rots, marks)
+            let moved = residuals.get(k * size..).unwrap_or(&[]);
+            (net.clone().map(&mut FreshLeaves), chunk, rots, (marks, moved))
         })
         .collect();
     // The shards run on long-lived threads: a thread that exits makes the allocator hand its

@@ -11,8 +11,9 @@ use generator::generate::{object_pairs_with, GenerateError, Variant};
 use pairs::math::Vector3;
 use pairs::metrics::{score_pair, MetricError};
 use pairs::PairKind;
-use pairs::{Pair, PartId, Prediction};
+use pairs::{Pair, PairInput, PartId, Prediction};
 
+use crate::inference::align_globally;
 use crate::network::sampling::SamplingError;
 use crate::network::PartInductionNet;
 
@@ -173,12 +174,24 @@ pub fn score(net: &PartInductionNet, pairs: &[Pair]) -> Result<Scores, ScoreErro
 
 /// Scores the network's single-pass predictions on every pair of `pairs`, in order.
 pub fn score_pairs(net: &PartInductionNet, pairs: &[Pair]) -> Result<Vec<PairScores>, ScoreError> {
+    score_pairs_aligned(net, pairs, 0)
+}
+
+/// [`score_pairs`] after `alignments` global alignments of P (the authors' release: 2):
+/// each predicts the flow of P' (P to begin with) and moves P' by the one rigid motion
+/// that fits it ([`align_globally`]); the pass then runs on (P', Q) and its flow is
+/// `P' - P` plus the predicted one. For weights trained without relative pose, which
+/// expect the global motion removed first.
+pub fn score_pairs_aligned(
+    net: &PartInductionNet,
+    pairs: &[Pair],
+    alignments: usize,
+) -> Result<Vec<PairScores>, ScoreError> {
     pairs
         .iter()
         .map(|pair| {
             let id = || pair.id().to_string();
-            let prediction = net
-                .predict(pair.input())
+            let prediction = predict_aligned(net, pair.input(), alignments)
                 .map_err(|source| ScoreError::Predict { pair: id(), source })?;
             let truth = pair.truth();
             let (subset, probs) = net
@@ -188,6 +201,28 @@ pub fn score_pairs(net: &PartInductionNet, pairs: &[Pair]) -> Result<Vec<PairSco
             PairScores::of(pair, &prediction, support_iou(&probs, &parts_s))
         })
         .collect()
+}
+
+/// The single pass on `input` after `alignments` global alignments of P, in P's frame.
+fn predict_aligned(
+    net: &PartInductionNet,
+    input: &PairInput,
+    alignments: usize,
+) -> Result<Prediction, SamplingError> {
+    let mut moved = input.clone();
+    for _ in 0..alignments {
+        let flow = net.predict(&moved)?.flow.unwrap_or_default();
+        moved.p.points = align_globally(&moved.p.points, &flow);
+    }
+    let mut prediction = net.predict(&moved)?;
+    if alignments > 0 {
+        if let Some(flow) = prediction.flow.as_mut() {
+            for ((f, x), start) in flow.iter_mut().zip(&moved.p.points).zip(&input.p.points) {
+                *f += x - start;
+            }
+        }
+    }
+    Ok(prediction)
 }
 
 impl PairScores {
