@@ -21,8 +21,9 @@
 # Run from the repository root. Without MODEL_BIN it builds `model` with the `cuda`
 # feature: burn's CUDA backend compiles its kernels at run time with NVRTC, so the machine
 # needs the NVIDIA driver and NVRTC (`libnvrtc.so.<major>`, from the CUDA toolkit or the
-# `nvidia-cuda-nvrtc` Python wheel) on the library path, and the build itself downloads an
-# LLVM bundle from GitHub (cubecl-cuda's build script). It then trains on GPU 0 for MINUTES
+# `nvidia-cuda-nvrtc` Python wheel) on the library path; the build needs only crates.io
+# (cubecl-cuda's LLVM compiler, unused with NVRTC, is the workspace's shims/cubecl-llvm).
+# It then trains on GPU 0 for MINUTES
 # minutes (the step under way is finished, then a checkpoint is written) and prints where
 # the checkpoint is. Copy that folder back and run
 # `cargo run --release -p model -- train --config CONFIG --checkpoints CHECKPOINTS` to go on

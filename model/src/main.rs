@@ -358,11 +358,47 @@ fn device(kind: DeviceKind) -> Result<Device> {
     match kind {
         DeviceKind::Cpu => Ok(Device::flex()),
         #[cfg(feature = "cuda")]
-        DeviceKind::Cuda => Ok(Device::cuda(0)),
+        DeviceKind::Cuda => {
+            cuda_probe()?;
+            Ok(Device::cuda(0))
+        }
         #[cfg(not(feature = "cuda"))]
         DeviceKind::Cuda => {
             anyhow::bail!("this build has no CUDA support; rebuild with `--features cuda`")
         }
+    }
+}
+
+/// burn's CUDA backend loads libcuda and libnvrtc on its first kernel and, when one is
+/// missing, panics on a thread of its own (and the main thread then on a closed channel):
+/// ask cudarc first, with the panic it raises for a missing library caught and kept quiet.
+#[cfg(feature = "cuda")]
+fn cuda_probe() -> Result<()> {
+    fn quietly<T>(f: impl FnOnce() -> T + std::panic::UnwindSafe) -> Option<T> {
+        let hook = std::panic::take_hook();
+        std::panic::set_hook(Box::new(|_| {}));
+        let out = std::panic::catch_unwind(f).ok();
+        std::panic::set_hook(hook);
+        out
+    }
+    match quietly(|| cudarc::driver::CudaContext::new(0).map(drop)) {
+        None => anyhow::bail!(
+            "--device cuda: the NVIDIA driver's libcuda.so does not load (no driver on this \
+             machine, or not on the library path)"
+        ),
+        Some(Err(e)) => anyhow::bail!("--device cuda: CUDA device 0 does not open: {e:?}"),
+        Some(Ok(())) => {}
+    }
+    match quietly(|| {
+        cudarc::nvrtc::compile_ptx("extern \"C\" __global__ void probe() {}").map(drop)
+    }) {
+        None => anyhow::bail!(
+            "--device cuda: libnvrtc does not load; kernels compile with NVRTC, from the CUDA \
+             toolkit or the `nvidia-cuda-nvrtc` Python wheel, on LD_LIBRARY_PATH \
+             (model/TRAINING.md, \"The GPU path\")"
+        ),
+        Some(Err(e)) => anyhow::bail!("--device cuda: NVRTC does not compile a kernel: {e:?}"),
+        Some(Ok(())) => Ok(()),
     }
 }
 

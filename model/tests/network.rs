@@ -482,6 +482,20 @@ fn a_residual_pair_asks_for_the_flow_its_perturbation_left() {
 }
 
 #[test]
+fn residual_pairs_are_drawn_in_stage_one_only() {
+    let pairs = some_pairs(&tiny(), 8);
+    let trained = |stage1_pairs: u64, residual_pairs: f64, root: &std::path::Path| {
+        let config = TrainConfig { stage1_pairs, residual_pairs, ..tiny() };
+        train_in_legs(&config, &pairs, root, &[1])
+    };
+    let dirs: Vec<_> = (0..4).map(|_| tempfile::tempdir().expect("dir")).collect();
+    // One step of stage 1: every pair a residual pair changes what is learnt.
+    assert_ne!(trained(16, 1.0, dirs[0].path()), trained(16, 0.0, dirs[1].path()));
+    // One step of stage 2 (no stage 1): the switch changes nothing.
+    assert_eq!(trained(0, 1.0, dirs[2].path()), trained(0, 0.0, dirs[3].path()));
+}
+
+#[test]
 fn the_nearest_target_is_never_farther_than_the_same_part_one() {
     use model::train::batch::{BatchOptions, MatchingTarget, TrainingBatch};
     use pairs::math::Matrix3;

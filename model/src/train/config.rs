@@ -116,7 +116,7 @@ pub struct TrainConfig {
     /// is still normalised on its own.
     #[serde(default = "yes", skip_serializing_if = "is_true")]
     pub relative_pose: bool,
-    /// Share of the pairs, drawn per pair from the seed, turned into residual pairs: P
+    /// Share of stage 1's pairs, drawn per pair from the seed, turned into residual pairs: P
     /// replaced by P moved by its true part motions and then by a small random rigid motion
     /// (rotation up to `residual_rotation_deg` about a random axis through the origin,
     /// translation up to `residual_translation` along each axis), so the flow to learn is

@@ -301,7 +301,12 @@ impl Trainer {
         let stage = self.config.stage_at(self.state.pairs);
         let true_flow: Vec<bool> =
             (0..pairs.len()).map(|i| fed_true_flow(&self.config, step, i)).collect();
-        let residuals: Vec<_> = (0..pairs.len()).map(|i| residual(&self.config, step, i)).collect();
+        // Residual pairs teach the flow module what the iterations leave; in stages 2 and 3
+        // the segmentation module learns from the flow, which on a residual pair no longer
+        // tells the parts apart.
+        let residuals: Vec<_> = (0..pairs.len())
+            .map(|i| if stage == 1 { residual(&self.config, step, i) } else { None })
+            .collect();
         let (value, terms, grads, mut phases) = batch_gradients(
             &self.net,
             &self.config,
