@@ -8,7 +8,8 @@
 //!   subset point of P sent to the point of Q's subset nearest its true end: no matching onto
 //!   Q's subset can do better); the flow module fed that true matching (can it read
 //!   offsets?); and the residual floor, the flow the module predicts where none is left (P
-//!   moved by its true part motions, and Q against itself).
+//!   moved by its true part motions, and Q against itself); and two passes, the module run
+//!   again on P moved by its own flow and the two flows summed (does it refine itself?).
 //! - **Segmentation on the true flow**: the support module's matrix, a threshold rule on the
 //!   motion residual `‖R_i x_j + t_i − (x_j + f_j)‖ < τ` with the network's hypotheses or with
 //!   a rigid or similarity fit per true part (exact hypotheses), and the true same-part
@@ -239,6 +240,7 @@ pub fn diagnose(
         "flow: the flow module fed the true matching (one-hot, times the true mask)".to_string(),
         "residual: the flow module on P moved by the true motions (mean flow; ideal 0)".to_string(),
         "residual: the flow module on (Q, Q) (mean flow; ideal 0)".to_string(),
+        "flow: two passes (the flow module again on P moved by its flow; the sum)".to_string(),
     ])
     .chain(["true flow: the support module (net-seg@gt-flow, one pass)".to_string()])
     .chain(
@@ -333,6 +335,12 @@ pub fn diagnose(
         add_epe_to(&mut sums, &mut row, &residual, &vec![Vector3::zeros(); residual.len()])?;
         let null = net.null_flow(input).map_err(network)?;
         add_epe_to(&mut sums, &mut row, &null, &vec![Vector3::zeros(); null.len()])?;
+        // A second pass from where the first left P: does the module refine its own flow?
+        let mut moved = input.clone();
+        moved.p.points = points.iter().zip(&flow).map(|(x, f)| x + f).collect();
+        let (second, _) = net.flow_pass(&moved).map_err(network)?;
+        let twice: Vec<Vector3> = flow.iter().zip(&second).map(|(a, b)| a + b).collect();
+        add_epe(&mut sums, &mut row, &twice)?;
         // Segmentation on the true flow.
         let add_pass = |sums: &mut [Sums], row: &mut usize, support: Option<(&[f32], f64)>| {
             let probs = net

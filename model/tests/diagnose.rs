@@ -74,6 +74,13 @@ fn oracle_rows_score_as_oracles() {
     ] {
         assert!(row(name).epe.is_some_and(|v| v.is_finite() && v >= 0.0), "{name}");
     }
+    // The untrained flow head is zero-initialised: its flow is 0, so P moved by it is P and
+    // a second pass adds another 0.
+    let once = row("flow: the flow module").epe.expect("an EPE");
+    let twice = row("flow: two passes (the flow module again on P moved by its flow; the sum)")
+        .epe
+        .expect("an EPE");
+    assert!((once - twice).abs() <= 1e-6 * once.max(1e-6), "{once} against {twice}");
     // Started from the true labels, the iterations' piecewise-rigid flow fits the true
     // motions to the untrained network's flow: an EPE, not the truth's 0.
     let from_truth =
