@@ -88,9 +88,9 @@ pub enum EvalError {
         dir: PathBuf,
     },
     /// The network's weights could not be loaded.
-    #[error("network weights {path}: {message}")]
+    #[error("network weights: {message}")]
     Weights {
-        /// The weights file.
+        /// The weights folder or file (the message names it).
         path: PathBuf,
         /// What went wrong.
         message: String,

@@ -20,6 +20,7 @@
 pub mod asset_dataset;
 pub mod categories;
 pub mod check;
+pub mod commands;
 pub mod config;
 pub mod export;
 pub mod gallery;

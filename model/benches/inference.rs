@@ -7,17 +7,15 @@ use std::path::Path;
 
 use criterion::{criterion_group, criterion_main, Criterion};
 use model::inference::InferenceParams;
-use model::io::commands::load_network_folder;
 use model::train::validation::validation_pairs;
+use model::weights;
 
-/// jemalloc keeps freed large blocks for reuse (see the workspace's Cargo.toml).
-#[cfg(not(target_env = "msvc"))]
-#[global_allocator]
-static ALLOCATOR: tikv_jemallocator::Jemalloc = tikv_jemallocator::Jemalloc;
+// The binaries' allocator (jemalloc, from the `cli` crate), so timings are theirs.
+use cli as _;
 
 fn bench(c: &mut Criterion) {
     let weights = Path::new(env!("CARGO_MANIFEST_DIR")).join("weights/cpu");
-    let net = load_network_folder(&weights).expect("the shipped weights load");
+    let net = weights::load(&weights).expect("the shipped weights load").net;
     let pairs = validation_pairs(512, 2, false).expect("validation pairs");
     let input = pairs[0].input();
     let mut group = c.benchmark_group("inference");

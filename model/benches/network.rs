@@ -12,10 +12,8 @@ use model::train::config::TrainConfig;
 use model::train::{batch_gradients, stream_config, Draws};
 use pairs::math::Matrix3;
 
-/// jemalloc keeps freed large blocks for reuse (see the workspace's Cargo.toml).
-#[cfg(not(target_env = "msvc"))]
-#[global_allocator]
-static ALLOCATOR: tikv_jemallocator::Jemalloc = tikv_jemallocator::Jemalloc;
+// The binaries' allocator (jemalloc, from the `cli` crate), so timings are theirs.
+use cli as _;
 
 /// The fused layer (`model::network::norm`: product, bias, layer norm, ReLU) on one pair
 /// tensor's worth of rows (4 pairs x 128 x 128 points, 64 channels in and out).

@@ -7,8 +7,8 @@
 use std::path::Path;
 
 use model::inference::rotation_search::COVERING_RADIUS_DEG;
-use model::io::commands::load_network_folder;
 use model::train::validation::validation_pairs;
+use model::weights;
 use pairs::math::{Point3, UnitQuaternion};
 use pairs::transform::rotation_error_deg;
 use pairs::Cloud;
@@ -17,7 +17,7 @@ use rand::{Rng, SeedableRng};
 fn main() -> anyhow::Result<()> {
     let count: u32 = std::env::args().nth(1).map_or(Ok(20), |a| a.parse())?;
     let weights = Path::new(env!("CARGO_MANIFEST_DIR")).join("weights/cpu");
-    let net = load_network_folder(&weights)?;
+    let net = weights::load(&weights)?.net;
     let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(17);
     let mut within = 0;
     let mut errors = Vec::new();

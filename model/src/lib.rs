@@ -20,8 +20,10 @@
 //! - [`procedures`]: the iterative procedure's variants (the paper's, the authors'
 //!   release's global alignments, per-segment sub-problems and full-Q matching) scored
 //!   side by side (`model procedures`).
-//! - [`io`]: a user's PLY and OBJ files, the animated glTF, and what `model infer` and
-//!   `model animate` do ([`io::commands`]).
+//! - [`weights`]: weights folders (`config.toml` and `model.bpk`), the one way trained
+//!   weights are loaded and saved, checkpoint folders included.
+//! - [`io`]: a user's PLY and OBJ files and the animated glTF.
+//! - [`commands`]: the `model` binary's commands, arguments beside bodies.
 //!
 //! ```
 //! use burn::prelude::*;
@@ -38,9 +40,11 @@
 //! ```
 #![deny(missing_docs)]
 
+pub mod commands;
 pub mod diagnose;
 pub mod inference;
 pub mod io;
 pub mod network;
 pub mod procedures;
 pub mod train;
+pub mod weights;

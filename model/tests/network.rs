@@ -7,9 +7,10 @@ use generator::config::GeneratorConfig;
 use generator::stream::TrainingStream;
 use model::network::sampling::SamplingError;
 use model::network::PartInductionNet;
-use model::train::checkpoint::{load_weights, save_weights, CheckpointDir};
+use model::train::checkpoint::CheckpointDir;
 use model::train::config::TrainConfig;
 use model::train::{stream_config, Budget, Draws, RunPaths, Trainer};
+use model::weights::{self, read_record, write_record, WeightsError};
 use pairs::math::Point3;
 use pairs::{Cloud, Pair, PairInput};
 
@@ -50,15 +51,23 @@ fn saved_and_loaded_weights_predict_bit_identically() {
     let net = fresh_net(&config);
     let pair = &some_pairs(&config, 1)[0];
     let dir = tempfile::tempdir().expect("a temporary folder");
-    let file = dir.path().join("w.bpk");
-    save_weights(&net, &file).expect("saved");
-    let loaded = load_weights(&config.network, &file, &Device::flex()).expect("loaded");
+    let folder = dir.path().join("w");
+    weights::save(&folder, &net, &config).expect("saved");
+    let loaded = weights::load(&folder).expect("loaded");
+    assert_eq!(loaded.config, config, "the config reads back equal");
     assert_eq!(
         net.predict(pair.input()).expect("runs"),
-        loaded.predict(pair.input()).expect("runs")
+        loaded.net.predict(pair.input()).expect("runs")
     );
+    let file = folder.join(weights::MODEL_FILE);
     let wrong = TrainConfig::built_in("cpu").network;
-    assert!(load_weights(&wrong, &file, &Device::flex()).is_err(), "other sizes are refused");
+    assert!(read_record(&wrong, &file, &Device::flex()).is_err(), "other sizes are refused");
+    // A file where the folder belongs is refused with the folder to give instead.
+    let err = weights::load(&file).unwrap_err();
+    assert!(matches!(err, WeightsError::NotAFolder { .. }), "{err}");
+    assert!(err.to_string().contains(&folder.display().to_string()), "{err}");
+    let err = weights::load(dir.path()).unwrap_err();
+    assert!(matches!(err, WeightsError::NoModel { .. }), "{err}");
 }
 
 /// Trains on `pairs` in `root` in legs of `legs` steps (each a new trainer resuming from the
@@ -79,9 +88,10 @@ fn train_in_legs(
         .expect("a trainer");
         t.run(Budget::steps(steps), |_| {}).expect("training runs");
     }
-    let net = load_weights(&config.network, &root.join("checkpoints/model.bpk"), &Device::flex())
-        .expect("weights");
-    net.predict(pairs[0].input()).expect("runs")
+    // A checkpoint folder is a weights folder.
+    let loaded = weights::load(&root.join("checkpoints")).expect("weights");
+    assert_eq!(&loaded.config, config);
+    loaded.net.predict(pairs[0].input()).expect("runs")
 }
 
 #[test]
@@ -96,6 +106,31 @@ fn a_resumed_run_ends_with_the_same_weights_as_an_uninterrupted_one() {
     assert_eq!(straight, resumed, "resuming changed the weights");
     let log = std::fs::read_to_string(b.path().join("reports/log.csv")).expect("log");
     assert_eq!(log.lines().count(), 7, "a header and one row per step:\n{log}");
+}
+
+#[test]
+fn a_checkpoint_from_before_weights_folders_resumes_into_one() {
+    // Checkpoints used to hold no config.toml and keep the best weights as best.bpk.
+    let config = tiny();
+    let pairs = some_pairs(&config, 4);
+    let dir = tempfile::tempdir().expect("dir");
+    train_in_legs(&config, &pairs, dir.path(), &[1]);
+    let checkpoints = dir.path().join("checkpoints");
+    std::fs::remove_file(checkpoints.join(weights::CONFIG_FILE)).expect("removed");
+    let _ = std::fs::remove_dir_all(checkpoints.join("best"));
+    // Still a weights folder: the config comes from state.json.
+    assert_eq!(weights::load(&checkpoints).expect("loads").config, config);
+    let best = PartInductionNet::seeded(&config.network, &Device::flex(), 17);
+    write_record(&best, &checkpoints.join("best.bpk")).expect("saved");
+    let optimizer = burn::optim::AdamConfig::new().init();
+    CheckpointDir::new(&checkpoints)
+        .load(&config, optimizer, &Device::flex().autodiff())
+        .expect("the old checkpoint resumes");
+    assert!(checkpoints.join(weights::CONFIG_FILE).is_file());
+    assert!(!checkpoints.join("best.bpk").exists());
+    let moved = weights::load(&checkpoints.join("best")).expect("best/ is a weights folder");
+    assert_eq!(moved.config, config);
+    assert_eq!(parameter_values(&moved.net), parameter_values(&best));
 }
 
 #[test]
@@ -263,14 +298,14 @@ fn seeding_is_not_disturbed_by_networks_loaded_on_other_threads() {
     let config = tiny().network;
     let dir = tempfile::tempdir().expect("a temporary folder");
     let file = dir.path().join("w.bpk");
-    save_weights(&PartInductionNet::seeded(&config, &Device::flex(), 1), &file).expect("saved");
+    write_record(&PartInductionNet::seeded(&config, &Device::flex(), 1), &file).expect("saved");
     let expected = parameter_values(&PartInductionNet::seeded(&config, &Device::flex(), 3));
     use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
     let (done, loads) = (AtomicBool::new(false), AtomicUsize::new(0));
     std::thread::scope(|scope| {
         scope.spawn(|| {
             while !done.load(Ordering::Relaxed) {
-                load_weights(&config, &file, &Device::flex()).expect("loads");
+                read_record(&config, &file, &Device::flex()).expect("loads");
                 loads.fetch_add(1, Ordering::Relaxed);
             }
         });
@@ -292,7 +327,7 @@ fn a_run_with_init_weights_starts_from_them() {
     let dir = tempfile::tempdir().expect("a temporary folder");
     let file = dir.path().join("start.bpk");
     let start = PartInductionNet::seeded(&tiny().network, &Device::flex(), 11);
-    save_weights(&start, &file).expect("saved");
+    write_record(&start, &file).expect("saved");
     let config = TrainConfig { init_weights: Some(file.clone()), ..tiny() };
     let pairs = some_pairs(&config, 2);
     let trainer = Trainer::on_pairs(

@@ -1,5 +1,8 @@
-//! The evaluator's commands as library calls: the whole evaluation ([`pipeline`]) and
-//! `evaluator score` / `evaluator predict` on prediction files ([`files`]).
+//! The evaluator's commands as library calls: the whole evaluation ([`pipeline`]),
+//! `evaluator score` / `evaluator predict` on prediction files ([`files`]), the binary's
+//! arguments and their dispatch ([`entry`]) and the progress bars ([`bars`]).
 
+pub mod bars;
+pub mod entry;
 pub mod files;
 pub mod pipeline;

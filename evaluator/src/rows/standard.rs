@@ -8,19 +8,16 @@
 //! segmentation step are tuned per flow source on the validation sets ([`crate::tuning`]).
 
 use std::fmt::Debug;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::sync::Arc;
 
 use baselines::{
     EmbeddedDeformation, FpfhFlow, IcpFlow, JLinkage, JLinkageParams, NearestFlow, Nrr, NrrParams,
     SeqRansac, SeqRansacParams, Spectral, SpectralParams,
 };
-use burn::prelude::Device;
 use model::inference::method::NetworkMethod;
 use model::inference::InferenceParams;
 use model::network::PartInductionNet;
-use model::train::checkpoint::load_weights;
-use model::train::config::TrainConfig;
 use pairs::{Method, Segmenter};
 use sha2::{Digest, Sha256};
 
@@ -70,19 +67,16 @@ fn fingerprint(method: &impl Debug) -> String {
 /// The network of `weights`; its fingerprint is the sha256 of its config and weights and the
 /// source hash of the code that runs it.
 pub fn load_network(weights: &Path) -> Result<(PartInductionNet, String), EvalError> {
-    let (config_path, model_path) = (weights.join("config.toml"), weights.join("model.bpk"));
-    let fail = |path: &PathBuf, message: String| EvalError::Weights { path: path.clone(), message };
-    let config = TrainConfig::load(&config_path.to_string_lossy())
-        .map_err(|e| fail(&config_path, e.to_string()))?;
-    let net = load_weights(&config.network, &model_path, &Device::flex())
-        .map_err(|e| fail(&model_path, e.to_string()))?;
+    let fail = |path: &Path, message: String| EvalError::Weights { path: path.into(), message };
+    let loaded = model::weights::load(weights).map_err(|e| fail(weights, e.to_string()))?;
     let mut hash = Sha256::new();
-    for path in [&config_path, &model_path] {
-        let bytes = std::fs::read(path).map_err(|e| fail(path, e.to_string()))?;
+    for path in [&loaded.config_file, &loaded.model_file] {
+        let bytes =
+            std::fs::read(path).map_err(|e| fail(path, format!("{}: {e}", path.display())))?;
         hash.update(&bytes);
     }
     let fingerprint = format!("net {:x} {MODEL_CODE}", hash.finalize());
-    Ok((net, fingerprint))
+    Ok((loaded.net, fingerprint))
 }
 
 /// A whole method and its fingerprint.

@@ -1,11 +1,11 @@
-//! What `model infer` and `model animate` do, as library calls: load a weights folder, read
-//! a user's two files or a dataset pair, run the inference procedure, describe its parts,
-//! motions and joints, and write coloured PLYs or an animated glTF.
+//! `model infer` and `model animate`: read a user's two files or a dataset pair, run the
+//! inference procedure of a weights folder, describe its parts, motions and joints, and
+//! write coloured PLYs or an animated glTF.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use burn::prelude::Device;
+use anyhow::{Context, Result};
 use pairs::dataset::viz::part_colour;
 use pairs::dataset::Dataset;
 use pairs::joint_estimate::{estimate_joints, JointParams};
@@ -13,28 +13,149 @@ use pairs::math::Point3;
 use pairs::transform::rotation_angle_deg;
 use pairs::{Cloud, JointKind, Pair, PairInput, PairKind, Prediction};
 
+use crate::commands::shared::{load_weights, spinner};
+use crate::inference::InferenceParams;
+use crate::io::animation::{write_animation, AnimationParams};
 use crate::io::pointfile::{read_points, write_ply, PointFileError};
 use crate::network::sampling::{farthest_point_sampling, SamplingError};
-use crate::network::PartInductionNet;
-use crate::train::checkpoint::{load_weights, CheckpointError};
-use crate::train::config::{ConfigError, TrainConfig};
 
-/// Why an application step failed.
+/// Run the inference procedure on two point clouds or meshes (.ply or .obj): print the
+/// parts, motions and joints, and write p_segments.ply and q_segments.ply.
+#[derive(clap::Args, Debug)]
+pub struct InferArgs {
+    /// The source shape P.
+    pub p: PathBuf,
+    /// The target shape Q.
+    pub q: PathBuf,
+    /// Folder for the coloured PLYs.
+    #[arg(long, default_value = ".")]
+    pub out: PathBuf,
+    /// The network and procedure options.
+    #[command(flatten)]
+    pub run: RunArgs,
+}
+
+/// Animate a dataset pair: each found part moves from P to Q along its SE(3) geodesic,
+/// written as a binary glTF (one node per segment, keyframes).
+#[derive(clap::Args, Debug)]
+pub struct AnimateArgs {
+    /// The pair, as <dataset>:<id> or <dataset>:<index>.
+    #[arg(long)]
+    pub pair: String,
+    /// Folder of the datasets.
+    #[arg(long, default_value = "datasets")]
+    pub datasets_root: PathBuf,
+    /// The .glb file to write.
+    #[arg(long, default_value = "anim.glb")]
+    pub out: PathBuf,
+    /// Keyframes from P to Q.
+    #[arg(long, default_value_t = 31)]
+    pub keyframes: usize,
+    /// The network and procedure options.
+    #[command(flatten)]
+    pub run: RunArgs,
+}
+
+/// The network and procedure options shared by `infer` and `animate`.
+#[derive(clap::Args, Debug)]
+pub struct RunArgs {
+    /// Weights folder (config.toml and model.bpk).
+    #[arg(long, default_value = "model/weights/cpu")]
+    pub weights: PathBuf,
+    /// Most passes of the iterative procedure (1: a single pass).
+    #[arg(long, default_value_t = 10)]
+    pub iterations: usize,
+    /// Search 48 rotations of P for the initial orientation (for pairs whose orientations
+    /// differ a lot).
+    #[arg(long)]
+    pub rotation_search: bool,
+    /// Global flow-then-Kabsch alignments of P before the passes (the authors' release
+    /// does 2).
+    #[arg(long, default_value_t = 0)]
+    pub global_alignments: usize,
+    /// Refine by per-segment sub-problems within a geodesic radius of each segment, as the
+    /// authors' release does, instead of on the whole deformed pair.
+    #[arg(long)]
+    pub sub_problems: bool,
+    /// End the last pass on Q's points (the release's full matching; for a full Q only:
+    /// both files are taken as full shapes).
+    #[arg(long)]
+    pub full_matching: bool,
+    /// Points per cloud (files with more are reduced by farthest-point sampling).
+    #[arg(long, default_value_t = 512)]
+    pub points: usize,
+}
+
+impl RunArgs {
+    /// The inference procedure these options choose.
+    pub fn params(&self) -> InferenceParams {
+        InferenceParams {
+            max_iterations: self.iterations.max(1),
+            rotation_search: self.rotation_search,
+            global_alignments: self.global_alignments,
+            sub_problems: self.sub_problems,
+            full_matching: self.full_matching,
+            ..InferenceParams::iterative()
+        }
+    }
+
+    /// The prediction of the weights folder's network on `input` by the chosen procedure.
+    pub fn infer(&self, input: &PairInput) -> Result<Prediction> {
+        let weights = load_weights(&self.weights, "--weights")?;
+        let spinner = spinner("inferring");
+        let inference = weights.net.infer(input, &self.params()).context("running the network")?;
+        spinner.finish_and_clear();
+        for (i, it) in inference.iterations.iter().enumerate() {
+            tracing::info!(
+                "pass {}: {} segments, mean flow change {:.4}",
+                i + 1,
+                it.prediction.motions.len(),
+                it.change
+            );
+        }
+        Ok(inference.prediction())
+    }
+}
+
+/// Runs `model infer`.
+pub fn run_infer(args: InferArgs) -> Result<()> {
+    let input =
+        input_from_files(&args.p, &args.q, args.run.points).context("reading the input files")?;
+    let prediction = args.run.infer(&input)?;
+    print!("{}", describe(&input, &prediction));
+    let files = write_segment_plys(&args.out, &input, &prediction)
+        .with_context(|| format!("writing the coloured clouds into {}", args.out.display()))?;
+    for f in files {
+        println!("wrote {}", f.display());
+    }
+    Ok(())
+}
+
+/// Runs `model animate`.
+pub fn run_animate(args: AnimateArgs) -> Result<()> {
+    let pair = pair_from_dataset(&args.datasets_root, &args.pair)
+        .with_context(|| format!("reading {} from {}", args.pair, args.datasets_root.display()))?;
+    let input = pair.input();
+    let prediction = args.run.infer(input)?;
+    print!("{}", describe(input, &prediction));
+    let params = AnimationParams { keyframes: args.keyframes, ..AnimationParams::default() };
+    write_animation(
+        &args.out,
+        &input.p.points,
+        &prediction.segments_p,
+        &prediction.motions,
+        &input.q.points,
+        &params,
+    )
+    .with_context(|| format!("writing {}", args.out.display()))?;
+    println!("wrote {}", args.out.display());
+    Ok(())
+}
+
+/// Why reading the input or writing the output failed.
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
 pub enum AppError {
-    /// The weights folder's config is missing or invalid.
-    #[error("{path}: {source}")]
-    Config {
-        /// The config file.
-        path: PathBuf,
-        /// The config error.
-        #[source]
-        source: ConfigError,
-    },
-    /// The weights could not be loaded.
-    #[error(transparent)]
-    Weights(#[from] CheckpointError),
     /// A point file could not be read or written.
     #[error(transparent)]
     PointFile(#[from] PointFileError),
@@ -62,14 +183,6 @@ pub enum AppError {
     /// The `<dataset>:<id>` argument is malformed or names no pair.
     #[error("pair {0}: expected <dataset>:<id or index> naming a pair of the dataset")]
     Pair(String),
-}
-
-/// The network of a weights folder (`config.toml` and `model.bpk`), on the CPU.
-pub fn load_network_folder(dir: &Path) -> Result<PartInductionNet, AppError> {
-    let config_path = dir.join("config.toml");
-    let config = TrainConfig::load(&config_path.to_string_lossy())
-        .map_err(|source| AppError::Config { path: config_path.clone(), source })?;
-    Ok(load_weights(&config.network, &dir.join("model.bpk"), &Device::flex())?)
 }
 
 /// A normalised cloud of at most `points` points from a `.ply` or `.obj` file (meshes are

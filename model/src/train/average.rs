@@ -8,24 +8,33 @@
 //! `((w_1 + w_2) + … + w_n) / n` in `f32`, so the same files in the same order give the same
 //! bytes.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use burn::module::{Module, ModuleMapper, ModuleVisitor, Param};
 use burn::prelude::*;
 
-use crate::network::config::NetworkConfig;
 use crate::network::PartInductionNet;
-use crate::train::checkpoint::{load_weights, CheckpointError};
+use crate::train::config::TrainConfig;
+use crate::weights::{self, WeightsError};
 
 /// Why weights could not be averaged.
 #[derive(Debug, thiserror::Error)]
+#[non_exhaustive]
 pub enum AverageError {
-    /// Fewer than one file.
-    #[error("averaging needs at least one weights file")]
+    /// Fewer than one folder.
+    #[error("averaging needs at least one weights folder")]
     Empty,
-    /// A file could not be loaded with the config's sizes.
+    /// A folder's network has other sizes than the first's.
+    #[error("{dir}: its network's sizes differ from those of {first}")]
+    Sizes {
+        /// The folder.
+        dir: PathBuf,
+        /// The first folder.
+        first: PathBuf,
+    },
+    /// A folder could not be loaded.
     #[error(transparent)]
-    Load(#[from] CheckpointError),
+    Load(#[from] WeightsError),
 }
 
 /// Every float parameter's values, in the module's visiting order.
@@ -42,26 +51,30 @@ pub fn parameters(net: &PartInductionNet) -> Vec<Vec<f32>> {
     collect.0
 }
 
-/// The network whose every parameter is the mean of the same parameter in `paths`' weights
-/// (each loaded with `config`'s sizes), on `device`.
+/// The network whose every parameter is the mean of the same parameter in the weights
+/// folders `dirs` (all of the first's sizes), on `device`, with the first folder's config.
 pub fn average_weights(
-    config: &NetworkConfig,
-    paths: &[PathBuf],
+    dirs: &[PathBuf],
     device: &Device,
-) -> Result<PartInductionNet, AverageError> {
-    let (first, rest) = paths.split_first().ok_or(AverageError::Empty)?;
-    let net = load_weights(config, first, device)?;
+) -> Result<(PartInductionNet, TrainConfig), AverageError> {
+    let (first, rest) = dirs.split_first().ok_or(AverageError::Empty)?;
+    let weights::Weights { net, config, .. } = weights::load_on(first, device)?;
     let mut sums = parameters(&net);
-    for path in rest {
-        let other = parameters(&load_weights(config, path, device)?);
+    for dir in rest {
+        let (other, _) = weights::read_config(dir)?;
+        if other.network != config.network {
+            return Err(AverageError::Sizes { dir: dir.clone(), first: first.clone() });
+        }
+        let model = Path::new(dir).join(weights::MODEL_FILE);
+        let other = parameters(&weights::read_record(&config.network, &model, device)?);
         for (sum, values) in sums.iter_mut().zip(other) {
             for (s, v) in sum.iter_mut().zip(values) {
                 *s += v;
             }
         }
     }
-    let n = paths.len() as f32;
-    Ok(net.map(&mut Replace { values: sums.into_iter(), divisor: n }))
+    let n = dirs.len() as f32;
+    Ok((net.map(&mut Replace { values: sums.into_iter(), divisor: n }), config))
 }
 
 /// Replaces each float parameter, in visiting order, by the next values divided by `divisor`.
@@ -84,27 +97,25 @@ impl<I: Iterator<Item = Vec<f32>>> ModuleMapper for Replace<I> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::train::checkpoint::save_weights;
-    use crate::train::config::TrainConfig;
 
     #[test]
-    fn the_average_is_the_mean_of_every_parameter_and_of_one_file_the_file() {
-        let config = TrainConfig::built_in("tiny").network;
+    fn the_average_is_the_mean_of_every_parameter_and_of_one_folder_the_folder() {
+        let config = TrainConfig::built_in("tiny");
         let device = Device::flex();
         let dir = tempfile::tempdir().expect("a temporary folder");
         let paths: Vec<PathBuf> = (1..=3u64)
             .map(|seed| {
-                let path = dir.path().join(format!("{seed}.bpk"));
-                save_weights(&PartInductionNet::seeded(&config, &device, seed), &path)
-                    .expect("saved");
+                let path = dir.path().join(format!("{seed}"));
+                let net = PartInductionNet::seeded(&config.network, &device, seed);
+                weights::save(&path, &net, &config).expect("saved");
                 path
             })
             .collect();
-        let each: Vec<_> = paths
-            .iter()
-            .map(|p| parameters(&load_weights(&config, p, &device).expect("loads")))
-            .collect();
-        let mean = parameters(&average_weights(&config, &paths, &device).expect("averages"));
+        let each: Vec<_> =
+            paths.iter().map(|p| parameters(&weights::load(p).expect("loads").net)).collect();
+        let (mean, mean_config) = average_weights(&paths, &device).expect("averages");
+        assert_eq!(mean_config, config);
+        let mean = parameters(&mean);
         assert_eq!(mean.len(), each[0].len());
         assert!(mean.len() > 10, "{} parameters", mean.len());
         for (i, m) in mean.iter().enumerate() {
@@ -115,8 +126,16 @@ mod tests {
         }
         // The three networks differ, so the mean is none of them.
         assert_ne!(mean, each[0]);
-        let one = parameters(&average_weights(&config, &paths[..1], &device).expect("averages"));
+        let one = parameters(&average_weights(&paths[..1], &device).expect("averages").0);
         assert_eq!(one, each[0]);
-        assert!(matches!(average_weights(&config, &[], &device), Err(AverageError::Empty)));
+        assert!(matches!(average_weights(&[], &device), Err(AverageError::Empty)));
+        // A folder of other sizes is named.
+        let mut wider = config.clone();
+        wider.network.feature_dim *= 2;
+        let other = dir.path().join("wider");
+        weights::save(&other, &PartInductionNet::seeded(&wider.network, &device, 4), &wider)
+            .expect("saved");
+        let err = average_weights(&[paths[0].clone(), other.clone()], &device).unwrap_err();
+        assert!(matches!(&err, AverageError::Sizes { dir, .. } if *dir == other), "{err}");
     }
 }

@@ -1,18 +1,20 @@
 //! Training checkpoints: the network, Adam's state and the trainer's position, written to
 //! temporary names and renamed into place so an interrupted save never leaves a checkpoint
-//! that looks complete. Also loading trained weights for inference.
+//! that looks complete. A checkpoint folder is a weights folder ([`crate::weights`]): its
+//! `config.toml` and `model.bpk` are the latest weights, its `best/` those of the best
+//! validation so far.
 
 use std::path::{Path, PathBuf};
 
 use burn::optim::ModuleOptimizer;
 use burn::prelude::*;
-use burn::store::ModuleRecord;
 use serde::{Deserialize, Serialize};
 
 use pairs::atomic::{at, replace_with, FileError};
 
 use crate::network::PartInductionNet;
-use crate::train::config::{NetworkConfig, TrainConfig};
+use crate::train::config::TrainConfig;
+use crate::weights::{self, WeightsError};
 
 /// The best validation scores so far and when they were reached.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -72,14 +74,9 @@ pub enum CheckpointError {
     /// File system error.
     #[error(transparent)]
     Io(#[from] FileError),
-    /// burn could not write or read a record.
-    #[error("{path}: {message}")]
-    Record {
-        /// The file.
-        path: PathBuf,
-        /// burn's message.
-        message: String,
-    },
+    /// The weights (or the optimiser's record) could not be written or read.
+    #[error(transparent)]
+    Weights(#[from] WeightsError),
     /// The state file is not valid.
     #[error("{path}: {source}")]
     State {
@@ -96,25 +93,7 @@ fn io(path: &Path) -> impl FnOnce(std::io::Error) -> CheckpointError + '_ {
 }
 
 fn record(path: &Path) -> impl FnOnce(burn::store::RecordError) -> CheckpointError + '_ {
-    move |e| CheckpointError::Record { path: path.to_path_buf(), message: e.to_string() }
-}
-
-/// Writes the network's weights to `path` (burn's record format), whole or not at all.
-pub fn save_weights(net: &PartInductionNet, path: &Path) -> Result<(), CheckpointError> {
-    replace_with(path, |tmp| net.clone().into_record().save(tmp).map_err(record(tmp)))
-}
-
-/// A network with `config`'s sizes and the weights of `path`, on `device`.
-pub fn load_weights(
-    config: &NetworkConfig,
-    path: &Path,
-    device: &Device,
-) -> Result<PartInductionNet, CheckpointError> {
-    let rec = ModuleRecord::load(path).map_err(record(path))?;
-    // Building the network draws initial weights from burn's shared generator: take the
-    // generator's turn, so a network being seeded on another thread is not disturbed.
-    let net = crate::network::rng::exclusive(|| PartInductionNet::new(config, device));
-    net.try_load_record(rec).map_err(record(path))
+    move |e| WeightsError::Record { path: path.to_path_buf(), message: e.to_string() }.into()
 }
 
 /// The files of a checkpoint folder.
@@ -134,13 +113,18 @@ impl CheckpointDir {
         &self.root
     }
 
-    /// The latest weights.
+    /// The latest weights' parameters (the folder itself is their weights folder).
     pub fn model(&self) -> PathBuf {
-        self.root.join("model.bpk")
+        self.root.join(weights::MODEL_FILE)
     }
 
-    /// The weights of the best validation so far.
+    /// The weights folder of the best validation so far.
     pub fn best(&self) -> PathBuf {
+        self.root.join("best")
+    }
+
+    /// Where checkpoints written before `best/` kept the best weights' parameters.
+    fn old_best(&self) -> PathBuf {
         self.root.join("best.bpk")
     }
 
@@ -150,6 +134,15 @@ impl CheckpointDir {
 
     fn state(&self) -> PathBuf {
         self.root.join("state.json")
+    }
+
+    /// Saves `net` as the best weights so far.
+    pub fn save_best(
+        &self,
+        net: &PartInductionNet,
+        config: &TrainConfig,
+    ) -> Result<(), CheckpointError> {
+        Ok(weights::save(&self.best(), net, config)?)
     }
 
     /// The saved state, if there is a checkpoint.
@@ -164,14 +157,25 @@ impl CheckpointDir {
             .map_err(|source| CheckpointError::State { path, source })
     }
 
-    /// Restores the network and optimiser of the saved checkpoint.
+    /// Restores the network and optimiser of the saved checkpoint of `config`. A checkpoint
+    /// written before checkpoints were weights folders gets its `config.toml`, and its
+    /// `best.bpk` becomes `best/`.
     pub fn load(
         &self,
-        config: &NetworkConfig,
+        config: &TrainConfig,
         optimizer: ModuleOptimizer,
         device: &Device,
     ) -> Result<(PartInductionNet, ModuleOptimizer), CheckpointError> {
-        let net = load_weights(config, &self.model(), device)?;
+        weights::write_config(&self.root, config)?;
+        let old = self.old_best();
+        if old.is_file() {
+            let best = self.best();
+            std::fs::create_dir_all(&best).map_err(io(&best))?;
+            weights::write_config(&best, config)?;
+            let to = best.join(weights::MODEL_FILE);
+            std::fs::rename(&old, &to).map_err(io(&to))?;
+        }
+        let net = weights::read_record(&config.network, &self.model(), device)?;
         let path = self.optimizer();
         let optimizer = optimizer.load(&path).map_err(record(&path))?;
         Ok((net, optimizer))
@@ -185,7 +189,9 @@ impl CheckpointDir {
         optimizer: &ModuleOptimizer,
         state: &TrainState,
     ) -> Result<(), CheckpointError> {
-        save_weights(net, &self.model())?;
+        std::fs::create_dir_all(&self.root).map_err(io(&self.root))?;
+        weights::write_config(&self.root, &state.config)?;
+        weights::write_record(net, &self.model())?;
         replace_with(&self.optimizer(), |tmp| optimizer.save(tmp).map_err(record(tmp)))?;
         let text = serde_json::to_string_pretty(state).expect("the state serialises");
         replace_with(&self.state(), |tmp| std::fs::write(tmp, text).map_err(io(tmp)))

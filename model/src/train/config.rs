@@ -39,7 +39,7 @@ pub struct TrainConfig {
     #[serde(default = "no_decay")]
     pub decay: f64,
     /// Pairs between learning-rate decays (`step` only).
-    #[serde(default = "never")]
+    #[serde(default = "never", skip_serializing_if = "is_never")]
     pub decay_every_pairs: u64,
     /// Smallest learning rate.
     pub min_learning_rate: f64,
@@ -208,6 +208,10 @@ fn never() -> u64 {
     u64::MAX
 }
 
+fn is_never(v: &u64) -> bool {
+    *v == never()
+}
+
 fn one() -> usize {
     1
 }
@@ -236,6 +240,12 @@ impl TrainConfig {
         let text = std::fs::read_to_string(Path::new(path_or_name))
             .map_err(|source| ConfigError::Read { path: path_or_name.to_string(), source })?;
         Self::from_toml(&text, path_or_name)
+    }
+
+    /// The config as TOML text that [`TrainConfig::from_toml`] reads back equal (what a
+    /// weights folder's `config.toml` holds when the trainer writes it).
+    pub fn to_toml(&self) -> Result<String, toml::ser::Error> {
+        toml::to_string(self)
     }
 
     /// A built-in config by name; panics on an unknown name (for tests and examples).

@@ -22,12 +22,11 @@ use pairs::Pair;
 
 use crate::network::sampling::SamplingError;
 use crate::network::PartInductionNet;
-use crate::train::checkpoint::{
-    load_weights, save_weights, Best, CheckpointDir, CheckpointError, TrainState,
-};
+use crate::train::checkpoint::{Best, CheckpointDir, CheckpointError, TrainState};
 use crate::train::config::TrainConfig;
 use crate::train::log::{Log, LogError, StepRow, ValidationRow};
 use crate::train::validation::{score, validation_pairs, ScoreError};
+use crate::weights::{self, WeightsError};
 
 pub mod average;
 pub mod batch;
@@ -49,6 +48,9 @@ pub enum TrainError {
     /// A checkpoint could not be saved or restored.
     #[error("checkpoint: {0}")]
     Checkpoint(#[from] CheckpointError),
+    /// The config's `init_weights` could not be read.
+    #[error("init_weights: {0}")]
+    InitWeights(#[from] WeightsError),
     /// The log could not be written.
     #[error("log: {0}")]
     Log(#[from] LogError),
@@ -220,8 +222,7 @@ impl Trainer {
                         dir: paths.checkpoints.root().to_path_buf(),
                     });
                 }
-                let (net, optimizer) =
-                    paths.checkpoints.load(&config.network, optimizer, &device)?;
+                let (net, optimizer) = paths.checkpoints.load(&config, optimizer, &device)?;
                 tracing::info!(step = state.step, pairs = state.pairs, "resuming from checkpoint");
                 (net, optimizer, state)
             }
@@ -229,7 +230,7 @@ impl Trainer {
                 let net = match &config.init_weights {
                     Some(path) => {
                         tracing::info!(weights = %path.display(), "starting from weights");
-                        let loaded = load_weights(&config.network, path, &device)?;
+                        let loaded = weights::read_record(&config.network, path, &device)?;
                         if config.init_modules.is_empty() {
                             loaded
                         } else {
@@ -356,7 +357,7 @@ impl Trainer {
             support_iou: Some(scores.support_iou),
         };
         if self.state.best.is_none_or(|b| best.beats(&b)) {
-            save_weights(&net, &self.paths.checkpoints.best())?;
+            self.paths.checkpoints.save_best(&net, &self.config)?;
             self.state.best = Some(best);
         }
         let row = ValidationRow { step: self.state.step, pairs: self.state.pairs, stage, scores };

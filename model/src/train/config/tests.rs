@@ -24,6 +24,29 @@ fn every_config_file_parses_and_validates() {
 }
 
 #[test]
+fn every_config_reads_back_equal_from_its_toml() {
+    // What a weights folder's config.toml holds: every built-in and every shipped config,
+    // ablations included, written by `to_toml` and read back.
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("configs");
+    let mut configs: Vec<TrainConfig> =
+        BUILT_IN.iter().map(|(name, _)| TrainConfig::built_in(name)).collect();
+    for dir in [root.clone(), root.join("ablations")] {
+        for entry in std::fs::read_dir(&dir).expect("a configs folder") {
+            let path = entry.expect("an entry").path();
+            if path.extension().is_some_and(|e| e == "toml") {
+                configs.push(TrainConfig::load(&path.to_string_lossy()).expect("valid"));
+            }
+        }
+    }
+    assert!(configs.len() > 20, "{} configs", configs.len());
+    for c in configs {
+        let text = c.to_toml().unwrap_or_else(|e| panic!("{}: {e}", c.name));
+        let back = TrainConfig::from_toml(&text, &c.name).expect("reads back");
+        assert_eq!(back, c, "{}:\n{text}", c.name);
+    }
+}
+
+#[test]
 fn errors_name_the_field() {
     let mut text = BUILT_IN[2].1.replace("batch = ", "batch = 0 #");
     let err = TrainConfig::from_toml(&text, "t").expect_err("batch 0").to_string();

@@ -3,23 +3,23 @@
 
 use std::path::PathBuf;
 
-use anyhow::{bail, Context, Result};
-use generator::asset_dataset::{load_assets, relative};
-use generator::export::collision::Budget;
-use generator::export::formats::{export_dataset, Format};
-use generator::export::inertia::DEFAULT_DENSITY;
-use generator::export::objects::{
+use crate::asset_dataset::{load_assets, relative};
+use crate::export::collision::Budget;
+use crate::export::formats::{export_dataset, Format};
+use crate::export::inertia::DEFAULT_DENSITY;
+use crate::export::objects::{
     built_in_objects, export_objects, ExportOptions, ExportedObject, ObjectFormat, ObjectToExport,
     Source,
 };
-use generator::export::physics::PhysicsOptions;
-use generator::shard::merge_shards;
+use crate::export::physics::PhysicsOptions;
+use crate::shard::merge_shards;
+use anyhow::{bail, Context, Result};
 use indicatif::{ProgressBar, ProgressStyle};
 use pairs::dataset::Manifest;
 
-use generator::config::GeneratorConfig;
+use crate::config::GeneratorConfig;
 
-use crate::Selection;
+use crate::commands::args::Selection;
 
 /// The simulator settings of `export-objects`.
 #[derive(Debug, clap::Args)]

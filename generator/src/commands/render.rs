@@ -2,13 +2,13 @@
 
 use std::path::PathBuf;
 
+use crate::multiview::cameras::{self, Placement};
+use crate::multiview::layout::{write_render, Layout};
+use crate::multiview::{RenderConfig, RenderJob};
 use anyhow::{bail, Context, Result};
-use generator::multiview::cameras::{self, Placement};
-use generator::multiview::layout::{write_render, Layout};
-use generator::multiview::{RenderConfig, RenderJob};
 
-use crate::commands::{progress_bar, selected_objects};
-use crate::Selection;
+use crate::commands::args::Selection;
+use crate::commands::objects::{progress_bar, selected_objects};
 
 /// The options of `generator render`.
 #[derive(Debug, clap::Args)]
