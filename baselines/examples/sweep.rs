@@ -21,11 +21,11 @@ mod support;
 use std::fmt::Write as _;
 
 use anyhow::Context;
+use articulated::categories::Split;
 use baselines::{
     IcpFlow, IcpParams, JLinkage, JLinkageParams, Nrr, NrrParams, SeqRansac, SeqRansacParams,
     Spectral, SpectralParams,
 };
-use generator::categories::Split;
 use generator::config::GeneratorConfig;
 use generator::generate::{object_pairs, GenerateError};
 use pairs::math::Vector3;

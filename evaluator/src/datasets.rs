@@ -4,7 +4,7 @@
 
 use std::path::{Path, PathBuf};
 
-use generator::categories::Split;
+use articulated::categories::Split;
 use generator::config::GeneratorConfig;
 use generator::generate::{dataset_origin, generate_dataset};
 use pairs::dataset::{Dataset, Manifest, PAIRS_FILE, SETS_FILE};

@@ -17,7 +17,7 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-use generator::categories::Split;
+use articulated::categories::Split;
 use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 

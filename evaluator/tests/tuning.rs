@@ -6,6 +6,7 @@ use std::collections::BTreeSet;
 use std::path::Path;
 use std::sync::{Arc, Mutex};
 
+use articulated::categories::Split;
 use evaluator::commands::pipeline::{evaluate, NoProgress, Options};
 use evaluator::datasets::{DatasetSpec, LoadedDataset};
 use evaluator::rows::grid::{Axis, Grid};
@@ -13,7 +14,6 @@ use evaluator::rows::registry::{Board, FlowSource, Registry, Runner};
 use evaluator::running::run::FlowCache;
 use evaluator::tuning::tune;
 use evaluator::EvalError;
-use generator::categories::Split;
 use generator::config::GeneratorConfig;
 use pairs::math::Vector3;
 use pairs::segments::complete_prediction;

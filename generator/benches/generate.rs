@@ -3,17 +3,17 @@
 //! (images included); ray casting at least 2 million rays per second; the training stream
 //! delivering at least 1,000 full pairs per second.
 
+use articulated::kinematics::link_poses;
+use articulated::seed::{rng_for, Stream};
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use generator::config::GeneratorConfig;
 use generator::generate::{build_object, generate_dataset, object_pairs};
-use generator::kinematics::link_poses;
-use generator::scan::camera::Camera;
-use generator::scan::render::render;
-use generator::scan::scene::PosedScene;
-use generator::scan_config::ScanConfig;
-use generator::seed::{rng_for, Stream};
 use generator::stream::TrainingStream;
 use pairs::PairKind;
+use scanner::camera::Camera;
+use scanner::config::ScanConfig;
+use scanner::render::render;
+use scanner::scene::PosedScene;
 
 /// Pairs drawn from the training stream per iteration.
 const STREAM_PAIRS: u64 = 2000;
@@ -71,7 +71,7 @@ fn ray_casting(c: &mut Criterion) {
 
 /// Rays `render` casts for one image: the pixels of the object's bounding-box window.
 fn cast_rays(scene: &PosedScene, camera: &Camera) -> u64 {
-    let (u, v) = generator::scan::render::pixel_window(scene, camera);
+    let (u, v) = scanner::render::pixel_window(scene, camera);
     u64::from(u.end - u.start) * u64::from(v.end - v.start)
 }
 

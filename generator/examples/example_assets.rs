@@ -10,8 +10,8 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
+use articulated::mesh::Mesh;
 use base64::Engine as _;
-use generator::mesh::Mesh;
 use pairs::math::{Point3, Vector3};
 use serde_json::json;
 

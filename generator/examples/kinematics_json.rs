@@ -13,14 +13,14 @@
 //! `base` frame to the link frame) and the bounds of its posed mesh.
 
 use anyhow::{Context, Result};
+use articulated::categories::Split;
+use articulated::kinematics::link_poses;
+use articulated::objects::ArticulatedObject;
 use clap::Parser;
-use generator::categories::Split;
 use generator::config::GeneratorConfig;
 use generator::export::objects::folder_name;
 use generator::export::urdf::{bounds, link_name, link_origins};
 use generator::generate::{build_object, configuration, object_states};
-use generator::kinematics::link_poses;
-use generator::objects::ArticulatedObject;
 use pairs::math::{Isometry3, Real, Translation3};
 use pairs::JointKind;
 use serde_json::{json, Value};

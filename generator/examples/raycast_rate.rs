@@ -9,12 +9,12 @@
 use std::path::Path;
 use std::time::Instant;
 
-use generator::mesh::Mesh;
+use articulated::mesh::Mesh;
+use articulated::objects::{ArticulatedObject, Link};
 use generator::multiview::scene::RenderScene;
-use generator::objects::{ArticulatedObject, Link};
-use generator::scan::scene::PosedScene;
 use pairs::math::{Isometry3, Matrix3, Point3, Real, Vector3};
 use rayon::prelude::*;
+use scanner::scene::PosedScene;
 
 fn main() -> anyhow::Result<()> {
     let root = std::env::args()

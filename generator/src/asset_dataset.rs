@@ -13,7 +13,7 @@ use crate::generate::{
     dataset_origin, pairs_of_object, sets_of_object, GenerateError, GeneratedPair, GeneratedSet,
     Variant,
 };
-use crate::import::{discover_assets, load_asset, ImportError, Imported};
+use assets::{discover_assets, load_asset, ImportError, Imported};
 
 /// Assets made into pairs at once before their pairs are written: bounds memory.
 const BATCH_ASSETS: usize = 16;

@@ -4,9 +4,9 @@ use serde::{Deserialize, Serialize};
 
 use pairs::{PairKind, SetMode};
 
-use crate::categories::{self, Category, Split};
-pub use crate::import::ImportOptions;
-pub use crate::scan_config::ScanConfig;
+use articulated::categories::{self, Category, Split};
+pub use assets::ImportOptions;
+pub use scanner::config::ScanConfig;
 
 /// Everything that determines a generated dataset; together with the generator version it
 /// makes the dataset reproducible byte for byte.
@@ -204,7 +204,9 @@ impl GeneratorConfig {
                 return invalid("kind", "a set dataset observes one object (not XF2F or XF2P)");
             }
         }
-        self.scanner().validate()?;
+        self.scanner()
+            .validate()
+            .map_err(|e| ConfigError::Invalid { field: e.field, reason: e.reason })?;
         if let Some(import) = &self.import {
             if let Err(reason) = import.continuous_range() {
                 return Err(ConfigError::Invalid { field: "import.continuous_range_deg", reason });

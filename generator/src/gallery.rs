@@ -7,11 +7,11 @@ use image::{Rgb, RgbImage};
 use pairs::dataset::viz::part_colour;
 use pairs::math::{Point3, Real, Rotation3};
 
-use crate::categories::{Category, CATEGORIES};
-use crate::kinematics::link_poses;
-use crate::objects::ArticulatedObject;
-use crate::sampling::SurfaceSampler;
-use crate::seed::{rng_for, Stream};
+use articulated::categories::{Category, CATEGORIES};
+use articulated::kinematics::link_poses;
+use articulated::objects::ArticulatedObject;
+use articulated::sampling::SurfaceSampler;
+use articulated::seed::{rng_for, Stream};
 
 /// Side of one square panel, pixels; a category's picture is two panels side by side.
 pub const PANEL: u32 = 200;
@@ -208,7 +208,7 @@ mod tests {
 
     #[test]
     fn a_picture_shows_both_states_in_colour_and_repeats() {
-        let laptop = crate::categories::find("laptop").expect("laptop");
+        let laptop = articulated::categories::find("laptop").expect("laptop");
         let picture = render_category(laptop, 0);
         assert_eq!(picture.dimensions(), (2 * PANEL, PANEL));
         let painted = |x0: u32| {

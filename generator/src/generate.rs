@@ -10,15 +10,15 @@ use pairs::{DatasetError, Pair, PairError, PairKind};
 use rand::Rng as _;
 use rayon::prelude::*;
 
-use crate::categories::split_table;
 use crate::config::{ConfigError, GeneratorConfig};
 use crate::label::{same_structure, Parts};
-use crate::objects::{ArticulatedObject, ObjectError};
 use crate::protocol::{candidate_pairs, draw_state};
-use crate::sampling::SurfaceSampler;
-use crate::scan::scene::SceneError;
-use crate::seed::{rng_for, Rng, Stream};
 use crate::shard::shard_objects;
+use articulated::categories::split_table;
+use articulated::objects::{ArticulatedObject, ObjectError};
+use articulated::sampling::SurfaceSampler;
+use articulated::seed::{rng_for, Rng, Stream};
+use scanner::scene::SceneError;
 
 mod pair;
 mod set;
@@ -195,7 +195,7 @@ pub fn dataset_object_pairs(
 }
 
 /// The pairs of an already built `object` as object `index` of a dataset (user assets
-/// come here with their object built by `crate::import`).
+/// come here with their object built by `assets`).
 pub fn pairs_of_object(
     config: &GeneratorConfig,
     object: &ArticulatedObject,

@@ -4,8 +4,8 @@ use pairs::ground_truth::nearest_of_part;
 use pairs::math::{Isometry3, Point3, Real};
 use pairs::{Cloud, GroundTruth, JointTruth, PartId, Similarity};
 
-use crate::objects::ArticulatedObject;
-use crate::sampling::SurfacePoint;
+use articulated::objects::ArticulatedObject;
+use articulated::sampling::SurfacePoint;
 
 /// Rotation difference (radians) below which two link motions count as one.
 const SAME_ROTATION: Real = 1e-5;

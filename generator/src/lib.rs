@@ -1,11 +1,12 @@
 //! Synthetic articulated objects, posed and sampled into point-cloud pairs with complete
 //! ground truth, written as dataset folders (docs/FORMAT.md).
 //!
-//! The stages are separate modules with plain-data inputs and outputs: an
-//! [`objects::ArticulatedObject`] from a [`categories::Category`]; joint states from
-//! [`protocol`]; link poses from [`kinematics`]; surface samples from [`sampling`] or
-//! virtual scans from [`scan`]; parts and ground truth from [`label`]; and [`generate`]
-//! runs them per pair and writes datasets.
+//! The stages are separate modules and crates with plain-data inputs and outputs: an
+//! [`ArticulatedObject`](articulated::objects::ArticulatedObject) from a built-in category
+//! ([`articulated::categories`]) or a user's asset ([`assets`]); joint states from
+//! [`protocol`]; link poses from [`articulated::kinematics`]; surface samples from
+//! [`articulated::sampling`] or virtual scans from [`scanner`]; parts and ground truth from
+//! [`label`]; and [`generate`] runs them per pair and writes datasets.
 //!
 //! ```
 //! use generator::{config::GeneratorConfig, generate::object_pairs};
@@ -18,23 +19,13 @@
 #![deny(missing_docs)]
 
 pub mod asset_dataset;
-pub mod categories;
-pub mod check;
 pub mod commands;
 pub mod config;
 pub mod export;
 pub mod gallery;
 pub mod generate;
-pub mod import;
-pub mod kinematics;
 pub mod label;
-pub mod mesh;
 pub mod multiview;
-pub mod objects;
 pub mod protocol;
-pub mod sampling;
-pub mod scan;
-pub mod scan_config;
-pub mod seed;
 pub mod shard;
 pub mod stream;

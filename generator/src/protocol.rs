@@ -5,8 +5,8 @@ use pairs::math::{Isometry3, Real, Vector3};
 use rand::seq::SliceRandom;
 use rand::Rng as _;
 
-use crate::objects::ArticulatedObject;
-use crate::seed::Rng;
+use articulated::objects::ArticulatedObject;
+use articulated::seed::Rng;
 
 /// Draws one articulation state: each joint sits at its rest value with probability
 /// `rest_probability` (a closed door), else uniformly within its limits; mimic joints then
@@ -64,8 +64,8 @@ pub fn global_pose(max_rotation_deg: Real, max_translation: Real, rng: &mut Rng)
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::categories::CATEGORIES;
-    use crate::seed::{rng_for, Stream};
+    use articulated::categories::CATEGORIES;
+    use articulated::seed::{rng_for, Stream};
 
     #[test]
     fn states_respect_limits_and_pairs_differ() {

@@ -153,8 +153,8 @@ impl std::fmt::Debug for TrainingStream {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::categories::Split;
     use crate::generate::object_pairs;
+    use articulated::categories::Split;
 
     fn small() -> GeneratorConfig {
         GeneratorConfig { points: 64, min_part_points: 4, ..GeneratorConfig::training() }
@@ -176,7 +176,7 @@ mod tests {
         assert_eq!(from_stream, from_objects);
         assert!(from_stream.iter().all(|p| {
             let category = &p.provenance().category;
-            crate::categories::find(category).is_some_and(|c| c.in_split(Split::Train))
+            articulated::categories::find(category).is_some_and(|c| c.in_split(Split::Train))
         }));
         let resumed = TrainingStream::starting_at(config, 3).expect("stream").next();
         assert_eq!(resumed.expect("a pair").expect("ok").provenance().object_id, 3);

@@ -5,15 +5,15 @@
 
 use std::path::{Path, PathBuf};
 
+use articulated::check::LinkShapes;
+use articulated::kinematics::link_poses;
+use articulated::objects::ArticulatedObject;
+use articulated::seed::{rng_for, Stream};
+use assets::{load_asset, ImportOptions};
 use generator::asset_dataset::{generate_asset_dataset, load_assets};
-use generator::check::LinkShapes;
 use generator::config::GeneratorConfig;
 use generator::generate::{pairs_of_object, GeneratedPair, Variant};
-use generator::import::{load_asset, ImportOptions};
-use generator::kinematics::link_poses;
-use generator::objects::ArticulatedObject;
 use generator::protocol::draw_state;
-use generator::seed::{rng_for, Stream};
 use nalgebra::{Isometry3, Point3, Rotation3, Translation3, Unit, UnitQuaternion, Vector3};
 use pairs::dataset::{Dataset, Manifest};
 use pairs::math::Real;
@@ -203,7 +203,7 @@ fn mimic_joints_follow_their_leader_in_every_drawn_state() {
     }
 }
 
-/// The plausibility checks of `generator::check` (links touch their parents and do not
+/// The plausibility checks of `articulated::check` (links touch their parents and do not
 /// pass through each other) and the ground-truth checks of `tests/ground_truth.rs` (each
 /// part's motion maps P onto Q's posed surface; flow is motion minus position).
 fn check_imported(object: &ArticulatedObject, kind: PairKind) {

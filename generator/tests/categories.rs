@@ -4,15 +4,15 @@
 //!
 //! Set `GENERATOR_CATEGORY=name` to check one category while writing it.
 
-use generator::categories::{Category, CATEGORIES};
-use generator::check::LinkShapes;
+use articulated::categories::{Category, CATEGORIES};
+use articulated::check::LinkShapes;
+use articulated::kinematics::link_poses;
+use articulated::objects::ArticulatedObject;
+use articulated::sampling::SurfaceSampler;
+use articulated::seed::{rng_for, Stream};
 use generator::config::GeneratorConfig;
 use generator::generate::object_pairs;
-use generator::kinematics::link_poses;
-use generator::objects::ArticulatedObject;
 use generator::protocol::draw_state;
-use generator::sampling::SurfaceSampler;
-use generator::seed::{rng_for, Stream};
 use pairs::math::{Point3, Real};
 use pairs::parts::part_sizes;
 use parry3d::query::PointQuery;

@@ -1,11 +1,11 @@
 //! Cross-instance pairs (XF2F, XF2P): P and Q observe two different objects of one
 //! category, parts are matched by role (the same named links), and the record has no flow.
 
-use generator::categories::{Split, CATEGORIES};
+use articulated::categories::{Split, CATEGORIES};
+use articulated::objects::ArticulatedObject;
 use generator::config::GeneratorConfig;
 use generator::generate::{build_object, generate_dataset, object_pairs, GenerateError};
 use generator::label::same_structure;
-use generator::objects::ArticulatedObject;
 use generator::shard::merge_shards;
 use pairs::dataset::{Dataset, Shard, PAIRS_FILE};
 use pairs::math::{Isometry3, Point3};

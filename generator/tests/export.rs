@@ -3,15 +3,15 @@
 //! same pairs for the same seed, for every category; and pairs record every joint's value by
 //! name and both global poses, enough to rebuild each part's motion from the object alone.
 
-use generator::categories::CATEGORIES;
+use articulated::categories::CATEGORIES;
+use articulated::kinematics::link_poses;
+use articulated::objects::ArticulatedObject;
+use assets::{load_asset, ImportOptions};
 use generator::config::GeneratorConfig;
 use generator::export::objects::{export_objects, write_object, ObjectToExport, Source};
 use generator::export::urdf::link_name;
 use generator::export::OutputError;
 use generator::generate::{build_object, object_pairs_with, pairs_of_object, Variant};
-use generator::import::{load_asset, ImportOptions};
-use generator::kinematics::link_poses;
-use generator::objects::ArticulatedObject;
 use pairs::math::{Isometry3, Matrix3, Point3, Real, Translation3, UnitQuaternion, Vector3};
 use pairs::PairKind;
 

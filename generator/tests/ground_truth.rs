@@ -1,7 +1,7 @@
 //! The ground truth of generated pairs holds against the meshes it was made from, for every
 //! category.
 
-use generator::categories::CATEGORIES;
+use articulated::categories::CATEGORIES;
 use generator::config::GeneratorConfig;
 use generator::generate::{build_object, object_pairs};
 use pairs::math::Point3;

@@ -3,7 +3,7 @@
 
 use std::collections::BTreeMap;
 
-use generator::categories::{of_split, Split};
+use articulated::categories::{of_split, Split};
 use generator::config::GeneratorConfig;
 use generator::generate::object_pairs;
 use rayon::prelude::*;

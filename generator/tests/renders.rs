@@ -7,22 +7,22 @@
 
 use std::path::Path;
 
+use articulated::mesh::Mesh;
+use articulated::objects::{ArticulatedObject, Joint, Link};
 use generator::config::GeneratorConfig;
 use generator::export::objects::{built_in_objects, ObjectToExport, Source};
-use generator::mesh::Mesh;
 use generator::multiview::appearance::{Appearance, Lighting, Material};
 use generator::multiview::layout::gt::entry_motion;
 use generator::multiview::layout::{write_render, Layout};
 use generator::multiview::scene::RenderScene;
 use generator::multiview::shade::{shade, Shading};
 use generator::multiview::{RenderConfig, RenderJob};
-use generator::objects::{ArticulatedObject, Joint, Link};
-use generator::scan::camera::Camera;
 use nalgebra::{Isometry3, Matrix3, Matrix4, Point3, Vector3};
 use pairs::math::Real;
 use pairs::Intrinsics;
 use parry3d::query::{PointQuery, Ray, RayCast};
 use parry3d::shape::TriMesh;
+use scanner::camera::Camera;
 use serde_json::Value;
 
 fn small_config() -> RenderConfig {
@@ -124,7 +124,7 @@ fn rgb_never_depends_on_the_part_label() {
         Material { frequency: 7.0, ..Material::uniform([0.6, 0.5, 0.4]) },
         {
             use rand::SeedableRng;
-            Material::draw(&mut generator::seed::Rng::seed_from_u64(9), 1.0)
+            Material::draw(&mut articulated::seed::Rng::seed_from_u64(9), 1.0)
         },
     ] {
         let image = |object: &ArticulatedObject, parts: &[u8]| {
@@ -500,11 +500,8 @@ fn write_checker(root: &Path) {
 fn assert_red_body_and_blue_lid(root: &Path, file: &str) {
     let joints = r#"{"category": "box", "joints": [{"name": "hinge", "type": "revolute", "parent": "body", "child": "lid", "origin": [0.0, 0.4, -0.3], "axis": [1.0, 0.0, 0.0], "lower": 0.0, "upper": 1.2}]}"#;
     std::fs::write(root.join("box.joints.json"), joints).expect("sidecar");
-    let imported = generator::import::load_asset(
-        &root.join(file),
-        &generator::import::ImportOptions::default(),
-    )
-    .expect("asset");
+    let imported =
+        assets::load_asset(&root.join(file), &assets::ImportOptions::default()).expect("asset");
     assert!(imported.surfaces.iter().all(|s| s.is_styled()));
     let object = ObjectToExport {
         object_id: 0,

@@ -5,9 +5,9 @@
 use std::collections::BTreeMap;
 use std::path::Path;
 
+use articulated::objects::ArticulatedObject;
 use generator::config::{GeneratorConfig, ScanConfig};
 use generator::generate::{build_object, generate_dataset, object_pairs, GeneratedPair};
-use generator::objects::ArticulatedObject;
 use generator::shard::merge_shards;
 use image::ImageReader;
 use pairs::dataset::{Dataset, Shard};

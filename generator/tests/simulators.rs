@@ -7,6 +7,7 @@
 
 use std::path::Path;
 
+use articulated::mesh::Mesh;
 use generator::config::GeneratorConfig;
 use generator::export::collision::{Budget, FLAT_THICKNESS};
 use generator::export::objects::{
@@ -14,7 +15,6 @@ use generator::export::objects::{
 };
 use generator::export::physics::PhysicsOptions;
 use generator::generate::build_object;
-use generator::mesh::Mesh;
 use pairs::math::Point3;
 
 fn cabinet() -> (GeneratorConfig, ObjectToExport) {

@@ -6,7 +6,6 @@ use std::path::PathBuf;
 use anyhow::{bail, Context, Result};
 
 use crate::asset_dataset::{generate_asset_dataset, load_assets, relative};
-use crate::categories::{Split, CATEGORIES};
 use crate::commands::args::{Args, Command};
 use crate::commands::objects::{
     export_command, export_objects_command, merge, progress_bar, report,
@@ -14,6 +13,7 @@ use crate::commands::objects::{
 use crate::config::GeneratorConfig;
 use crate::gallery::write_gallery;
 use crate::generate::generate_dataset;
+use articulated::categories::{Split, CATEGORIES};
 
 /// Runs what `args` ask for.
 pub fn run(args: Args) -> Result<()> {

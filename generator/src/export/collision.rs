@@ -26,7 +26,7 @@ use parry3d::transformation::try_convex_hull;
 use parry3d::transformation::vhacd::{VHACDParameters, VHACD};
 use serde::Serialize;
 
-use crate::mesh::Mesh;
+use articulated::mesh::Mesh;
 
 /// A piece whose hull's volume exceeds its own by at most this fraction is convex.
 pub const CONVEX_TOLERANCE: f64 = 0.02;

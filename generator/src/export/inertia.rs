@@ -16,7 +16,7 @@ use parry3d::mass_properties::MassProperties;
 use serde::Serialize;
 
 use super::collision::Hull;
-use crate::mesh::Mesh;
+use articulated::mesh::Mesh;
 
 /// Default density, kilograms per cubic object unit (the built-in categories are modelled
 /// at real-world sizes in metres: 500 kg/m³ is a light wood or a plastic).

@@ -22,7 +22,7 @@ use pairs::JointKind;
 
 use super::physics::LinkPhysics;
 use super::urdf::{escape, hull_path, link_name, link_origins, mesh_path, triple, widen};
-use crate::objects::ArticulatedObject;
+use articulated::objects::ArticulatedObject;
 
 /// Gravity, object frame (Y-up), metres per second squared.
 pub const GRAVITY: [f64; 3] = [0.0, -9.81, 0.0];

@@ -33,8 +33,8 @@ use super::urdf::{hull_path, link_name, mesh_path, mobility_json, obj_text, urdf
 use super::usd::usda_text;
 use crate::config::GeneratorConfig;
 use crate::generate::{configuration, object_states, GENERATOR_VERSION};
-use crate::mesh::Mesh;
-use crate::objects::{identifier, ArticulatedObject};
+use articulated::mesh::Mesh;
+use articulated::objects::{identifier, ArticulatedObject};
 
 /// Version of the object folder layout, in every `meta.json`.
 pub const OBJECT_FORMAT_VERSION: u32 = 2;
@@ -143,7 +143,7 @@ pub struct ObjectToExport {
     pub source: Source,
     /// Each link's materials and textures from the asset (`generator render`); empty for
     /// the built-in objects, which get a procedural material.
-    pub surfaces: Vec<crate::import::surface::Surface>,
+    pub surfaces: Vec<assets::surface::Surface>,
 }
 
 /// One exported object.

@@ -7,7 +7,7 @@ use serde::Serialize;
 
 use super::collision::{decompose, Budget, LinkCollision};
 use super::inertia::{inertial, Inertial, DEFAULT_DENSITY};
-use crate::objects::ArticulatedObject;
+use articulated::objects::ArticulatedObject;
 
 /// Settings of the physical properties.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]

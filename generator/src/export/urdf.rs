@@ -23,8 +23,8 @@ use serde_json::{json, Value};
 
 use super::inertia::Inertial;
 use super::physics::LinkPhysics;
-use crate::mesh::Mesh;
-use crate::objects::{ArticulatedObject, Joint};
+use articulated::mesh::Mesh;
+use articulated::objects::{ArticulatedObject, Joint};
 
 /// The URDF name of the empty link the object hangs from.
 pub const BASE_LINK: &str = "base";

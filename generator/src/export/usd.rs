@@ -29,8 +29,8 @@ use pairs::JointKind;
 
 use super::physics::LinkPhysics;
 use super::urdf::{base_joint_name, link_name, link_origins, widen};
-use crate::mesh::Mesh;
-use crate::objects::ArticulatedObject;
+use articulated::mesh::Mesh;
+use articulated::objects::ArticulatedObject;
 
 /// `text` as a USD identifier: characters other than ASCII letters, digits and `_`
 /// become `_`, and a leading digit (or an empty name) gets a `_` in front.

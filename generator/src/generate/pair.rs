@@ -8,14 +8,14 @@ use pairs::scan::{PairImages, ScanImages};
 use pairs::{Cloud, Pair, PairInput, Pose, Provenance, Scan, Scans};
 
 use crate::config::GeneratorConfig;
-use crate::kinematics::link_poses;
 use crate::label::{cross_ground_truth, ground_truth, merge_links, parts_by_values, Parts, Side};
-use crate::objects::ArticulatedObject;
 use crate::protocol::global_pose;
-use crate::sampling::{SurfacePoint, SurfaceSampler};
-use crate::scan::visibility::is_visible;
-use crate::scan::{images, scan_side, Requirements, ScannedSide, SURFACE_TOLERANCE};
-use crate::seed::{rng_for, Rng, Stream};
+use articulated::kinematics::link_poses;
+use articulated::objects::ArticulatedObject;
+use articulated::sampling::{SurfacePoint, SurfaceSampler};
+use articulated::seed::{rng_for, Rng, Stream};
+use scanner::visibility::is_visible;
+use scanner::{images, scan_side, Requirements, ScannedSide, SURFACE_TOLERANCE};
 
 use super::{configuration, GenerateError, GeneratedPair, Variant, GENERATOR_VERSION};
 

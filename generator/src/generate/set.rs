@@ -12,13 +12,13 @@ use pairs::{Cloud, Pose, Scan, Set, SetInput, Similarity, View, ViewKind};
 use rand::seq::SliceRandom;
 
 use crate::config::{GeneratorConfig, SetsConfig};
-use crate::kinematics::link_poses;
 use crate::label::{merge_links, merge_links_over, Parts};
-use crate::objects::ArticulatedObject;
 use crate::protocol::{draw_state, global_pose};
-use crate::sampling::SurfaceSampler;
-use crate::scan::images;
-use crate::seed::{rng_for, Stream};
+use articulated::kinematics::link_poses;
+use articulated::objects::ArticulatedObject;
+use articulated::sampling::SurfaceSampler;
+use articulated::seed::{rng_for, Stream};
+use scanner::images;
 
 use super::pair::{object_size, observe_side, presence, Observation};
 use super::{build_object, configuration, GenerateError, GENERATOR_VERSION};
@@ -53,7 +53,7 @@ pub fn object_sets(
 }
 
 /// The sets of an already built `object` as object `index` of a set dataset (user assets
-/// come here with their object built by `crate::import`).
+/// come here with their object built by `assets`).
 pub fn sets_of_object(
     config: &GeneratorConfig,
     object: &ArticulatedObject,
@@ -403,8 +403,8 @@ fn label_set(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::categories::Split;
     use crate::label::{ground_truth, Side};
+    use articulated::categories::Split;
     use pairs::SetMode;
 
     fn config(mode: SetMode, views: u32) -> GeneratorConfig {

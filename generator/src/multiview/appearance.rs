@@ -1,5 +1,5 @@
 //! What a rendered surface looks like, independent of its part: an asset's own materials
-//! (OBJ/MTL colours and `map_Kd` textures, URDF colours; `crate::import::surface`) where it
+//! (OBJ/MTL colours and `map_Kd` textures, URDF colours; `assets::surface`) where it
 //! has them, and otherwise one procedural material per object: a colour pair blended by a
 //! solid texture evaluated at the link's rest-frame position (so the texture moves with the
 //! part and repeats between states and views). Lit by a fixed set of directional lights.
@@ -17,8 +17,8 @@ use serde::{Deserialize, Serialize};
 use parry3d::query::PointQueryWithLocation;
 use parry3d::shape::TriMesh;
 
-use crate::import::surface::Surface;
-use crate::seed::Rng;
+use articulated::seed::Rng;
+use assets::surface::Surface;
 
 /// One surface material: colour `base` where the texture is low, `vein` where it is high.
 #[derive(Debug, Clone, PartialEq, Serialize)]

@@ -9,7 +9,7 @@ use pairs::Intrinsics;
 use serde::{Deserialize, Serialize};
 
 use super::RenderError;
-use crate::scan::camera::Camera;
+use scanner::camera::Camera;
 
 /// Where the cameras stand.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]

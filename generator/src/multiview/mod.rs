@@ -22,13 +22,13 @@ use rand::Rng as _;
 use serde::{Deserialize, Serialize};
 
 use crate::export::objects::ObjectToExport;
-use crate::kinematics::link_poses;
-use crate::objects::ArticulatedObject;
-use crate::scan::camera::Camera;
-use crate::scan::scene::SceneError;
-use crate::seed::{rng_for, Stream};
 use appearance::{Appearance, Lighting, Material};
+use articulated::kinematics::link_poses;
+use articulated::objects::ArticulatedObject;
+use articulated::seed::{rng_for, Stream};
 use cameras::Placement;
+use scanner::camera::Camera;
+use scanner::scene::SceneError;
 use scene::RenderScene;
 use shade::{shade, Shading, ViewImages};
 
@@ -352,7 +352,7 @@ impl RenderJob {
 pub fn draw_states(
     object: &ArticulatedObject,
     states: u32,
-    rng: &mut crate::seed::Rng,
+    rng: &mut articulated::seed::Rng,
 ) -> Vec<Vec<Real>> {
     let n = states as usize;
     let mut values = vec![vec![0.0 as Real; object.joints.len()]; n];

@@ -1,7 +1,7 @@
 //! The renderer's posed object: every link's triangles in one compressed 8-wide BVH
 //! (`obvhs`, triangles stored in leaf order), cast against one primary ray per pixel after
 //! a bounding-box test. The scanner keeps parry's
-//! ([`crate::scan::scene::PosedScene`]) so that datasets stay byte-identical; the two agree
+//! ([`scanner::scene::PosedScene`]) so that datasets stay byte-identical; the two agree
 //! on which rays hit (generator/benches/open3d_raycast.py counts the same hits for both and
 //! for Open3D).
 
@@ -13,8 +13,8 @@ use obvhs::triangle::Triangle;
 use obvhs::BvhBuildParams;
 use pairs::math::{Isometry3, Point3, Real, Vector3};
 
-use crate::objects::ArticulatedObject;
-use crate::scan::scene::{Hit, SceneError};
+use articulated::objects::ArticulatedObject;
+use scanner::scene::{Hit, SceneError};
 
 /// All links of an object in one articulation state, for ray casting.
 pub struct RenderScene {
@@ -82,7 +82,7 @@ impl RenderScene {
 
     /// The eight corners of the bounding box.
     pub fn corners(&self) -> [Point3; 8] {
-        crate::scan::scene::box_corners(&self.min, &self.max)
+        scanner::scene::box_corners(&self.min, &self.max)
     }
 
     /// Whether the ray can meet the bounding box within `max_distance` (slab test; a ray
@@ -141,9 +141,9 @@ impl RenderScene {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::mesh::Mesh;
-    use crate::objects::Link;
-    use crate::scan::scene::PosedScene;
+    use articulated::mesh::Mesh;
+    use articulated::objects::Link;
+    use scanner::scene::PosedScene;
 
     #[test]
     fn hits_agree_with_the_scanners_ray_caster() {

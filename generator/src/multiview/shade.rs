@@ -7,8 +7,8 @@ use rayon::prelude::*;
 
 use super::appearance::{Appearance, Lighting};
 use super::scene::RenderScene;
-use crate::scan::camera::Camera;
-use crate::scan::render::window_of;
+use scanner::camera::Camera;
+use scanner::render::window_of;
 
 /// The images of one view, row-major from the top-left pixel.
 #[derive(Debug, Clone, PartialEq)]

@@ -7,7 +7,7 @@
 
 use std::path::{Path, PathBuf};
 
-use generator::import::mesh_files::parse_obj;
+use assets::mesh_files::parse_obj;
 use pairs::atomic::{at, replace_bytes, FileError};
 use pairs::math::{Point3, Real};
 use pairs::sampling::{point_on_triangle, triangle_area, AreaSampler};
@@ -30,7 +30,7 @@ pub enum PointFileError {
     },
     /// An OBJ file the generator's OBJ reader refused (its message names the file).
     #[error(transparent)]
-    Obj(#[from] generator::import::ImportError),
+    Obj(#[from] assets::ImportError),
 }
 
 fn malformed(path: &Path, message: impl Into<String>) -> PointFileError {

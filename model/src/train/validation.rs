@@ -5,7 +5,7 @@
 //! single pass takes its labels from RPEN steps that only stage 3 trains, so it cannot
 //! tell one stage-2 network from another).
 
-use generator::categories::Split;
+use articulated::categories::Split;
 use generator::config::GeneratorConfig;
 use generator::generate::{object_pairs_with, GenerateError, Variant};
 use pairs::math::Vector3;

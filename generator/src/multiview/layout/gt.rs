@@ -15,7 +15,7 @@ use serde_json::{json, Value};
 
 use super::write_bytes;
 use crate::multiview::{bounds, posed_mesh, JointStates, RenderError, RenderJob};
-use crate::scan::camera::Camera;
+use scanner::camera::Camera;
 
 /// The map from our object frame (Y up) to a layout's world: `x' = scale * C * (x - centre)`
 /// with `C = [[1,0,0],[0,0,-1],[0,1,0]]` when `z_up` (PARIS's `preprocess.py:245-252`),

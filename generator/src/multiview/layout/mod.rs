@@ -227,7 +227,7 @@ pub(crate) fn write_png(
     height: u32,
     colour: ExtendedColorType,
 ) -> Result<(), RenderError> {
-    let bytes = crate::scan::images::png(data, width, height, colour)
+    let bytes = scanner::images::png(data, width, height, colour)
         .map_err(|error| RenderError::Image { path: path.into(), error })?;
     write_bytes(path, &bytes)
 }

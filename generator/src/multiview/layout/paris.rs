@@ -34,7 +34,7 @@ use super::gt::{part_joints, trans_json, write_meshes, WorldFrame};
 use super::{each_view, write_json, write_png};
 use crate::multiview::shade::rgb8;
 use crate::multiview::{RenderConfig, RenderError, RenderJob, ViewImages};
-use crate::scan::camera::Camera;
+use scanner::camera::Camera;
 
 /// State folders, in state order.
 pub const STATES: [&str; 2] = ["start", "end"];
@@ -75,8 +75,11 @@ pub fn write_object(
         }
     }
     let frame = super::Layout::Paris.frame(job);
-    let source =
-        format!("sapien/{}/{}", crate::objects::identifier(&job.object.object.category), job.name);
+    let source = format!(
+        "sapien/{}/{}",
+        articulated::objects::identifier(&job.object.object.category),
+        job.name
+    );
     let load = out.join("load").join(&source);
     let data = out.join("data").join(&source).join("textured_objs");
 
