@@ -27,3 +27,7 @@ pub mod mesh;
 pub mod objects;
 pub mod sampling;
 pub mod seed;
+
+/// The version every output records as `generator_version` (datasets, renders, object
+/// folders): the workspace's version, which changes when the objects or the protocol do.
+pub const GENERATOR_VERSION: &str = env!("CARGO_PKG_VERSION");

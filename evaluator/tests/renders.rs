@@ -9,11 +9,11 @@ use evaluator::boards::render_joints::{score_joints, section, upsert, RenderJoin
 use evaluator::rows::registry::{Board, Registry};
 use evaluator::running::renders::render_joints;
 use generator::config::GeneratorConfig;
-use generator::export::objects::built_in_objects;
-use generator::multiview::layout::{write_render, Layout};
-use generator::multiview::{RenderConfig, RenderJob};
+use generator::objects::built_in_objects;
 use pairs::metrics::render_joints::Variant;
 use pairs::{Method, MethodError, PairInput, Prediction};
+use renderer::layout::{write_render, Layout};
+use renderer::{RenderConfig, RenderJob};
 
 struct Fails;
 

@@ -16,14 +16,14 @@ use anyhow::{Context, Result};
 use articulated::categories::Split;
 use articulated::kinematics::link_poses;
 use articulated::objects::ArticulatedObject;
+use assets::sourced::folder_name;
 use clap::Parser;
 use generator::config::GeneratorConfig;
-use generator::export::objects::folder_name;
-use generator::export::urdf::{bounds, link_name, link_origins};
-use generator::generate::{build_object, configuration, object_states};
-use pairs::math::{Isometry3, Real, Translation3};
+use generator::generate::{build_object, object_states};
+use pairs::math::{Isometry3, Point3, Real, Translation3};
 use pairs::JointKind;
 use serde_json::{json, Value};
+use simulators::urdf::{link_name, link_origins};
 
 /// Prints the generator's forward kinematics of exported objects as JSON.
 #[derive(Debug, Parser)]
@@ -114,7 +114,8 @@ fn object_json(
                     let frame = pose * Translation3::from(origins[l].coords);
                     let posed: Vec<_> =
                         object.links[l].mesh.vertices.iter().map(|v| pose * v).collect();
-                    let (lo, hi) = bounds(posed.iter());
+                    let (lo, hi) =
+                        pairs::math::bounds(&posed).unwrap_or((Point3::origin(), Point3::origin()));
                     let value = json!({
                         "transform": matrix(&frame),
                         "bounds": [[lo.x, lo.y, lo.z], [hi.x, hi.y, hi.z]],
@@ -122,7 +123,7 @@ fn object_json(
                     (link_name(l), value)
                 })
                 .collect();
-            json!({ "values": configuration(object, values), "links": links })
+            json!({ "values": object.configuration(values), "links": links })
         })
         .collect();
     json!({

@@ -11,9 +11,9 @@ use std::time::Instant;
 
 use articulated::mesh::Mesh;
 use articulated::objects::{ArticulatedObject, Link};
-use generator::multiview::scene::RenderScene;
 use pairs::math::{Isometry3, Matrix3, Point3, Real, Vector3};
 use rayon::prelude::*;
+use renderer::scene::RenderScene;
 use scanner::scene::PosedScene;
 
 fn main() -> anyhow::Result<()> {

@@ -75,7 +75,8 @@ pub fn render_category(category: &Category, seed: u64) -> RgbImage {
             samples.iter().map(|s| (view * s.posed(&poses), s.link)).collect()
         })
         .collect();
-    let bounds = bounding_box(views.iter().flatten().map(|(p, _)| p));
+    let bounds = pairs::math::bounds(views.iter().flatten().map(|(p, _)| p))
+        .unwrap_or((Point3::origin(), Point3::origin()));
     let mut image = RgbImage::from_pixel(2 * PANEL, PANEL, Rgb([255, 255, 255]));
     for (panel, points) in views.iter().enumerate() {
         draw_panel(&mut image, panel as u32 * PANEL, points, bounds, SPLAT);
@@ -89,7 +90,8 @@ pub fn render_category(category: &Category, seed: u64) -> RgbImage {
 pub fn render_labelled(points: &[Point3], labels: &[u32], splat: i32) -> RgbImage {
     let viewed: Vec<(Point3, usize)> =
         points.iter().zip(labels).map(|(p, &l)| (view() * p, l as usize)).collect();
-    let bounds = bounding_box(viewed.iter().map(|(p, _)| p));
+    let bounds = pairs::math::bounds(viewed.iter().map(|(p, _)| p))
+        .unwrap_or((Point3::origin(), Point3::origin()));
     let mut image = RgbImage::from_pixel(PANEL, PANEL, Rgb([255, 255, 255]));
     draw_panel(&mut image, 0, &viewed, bounds, splat);
     image
@@ -98,16 +100,6 @@ pub fn render_labelled(points: &[Point3], labels: &[u32], splat: i32) -> RgbImag
 /// The gallery's viewpoint: from the front, right and above.
 fn view() -> Rotation3 {
     Rotation3::from_euler_angles(0.45, -0.6, 0.0)
-}
-
-/// The axis-aligned box of `points`.
-fn bounding_box<'a>(points: impl Iterator<Item = &'a Point3>) -> (Point3, Point3) {
-    let (mut lo, mut hi) = (Point3::from([Real::MAX; 3]), Point3::from([Real::MIN; 3]));
-    for p in points {
-        lo = lo.inf(p);
-        hi = hi.sup(p);
-    }
-    (lo, hi)
 }
 
 /// Splats `points` (view frame, with their link) into the panel at column `x0`, far points

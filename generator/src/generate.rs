@@ -26,8 +26,7 @@ mod set;
 use pair::{make_pair, Partner, Scene, State};
 pub use set::{object_sets, set_id, sets_of_object, GeneratedSet, SET_ATTEMPTS};
 
-/// Version written into every pair's provenance and the manifest.
-pub const GENERATOR_VERSION: &str = env!("CARGO_PKG_VERSION");
+use articulated::GENERATOR_VERSION;
 
 /// Objects generated in parallel before their pairs are written: bounds memory.
 const BATCH_OBJECTS: usize = 32;
@@ -390,12 +389,4 @@ pub fn dataset_origin(config: &GeneratorConfig, shard: Option<Shard>) -> Dataset
         assets: Vec::new(),
         left_out: Default::default(),
     }
-}
-
-/// Every joint's value in one state, by joint name.
-pub fn configuration(
-    object: &ArticulatedObject,
-    values: &[Real],
-) -> std::collections::BTreeMap<String, Real> {
-    object.joints.iter().zip(values).map(|(j, &v)| (j.name.clone(), v)).collect()
 }

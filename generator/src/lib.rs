@@ -21,11 +21,10 @@
 pub mod asset_dataset;
 pub mod commands;
 pub mod config;
-pub mod export;
 pub mod gallery;
 pub mod generate;
 pub mod label;
-pub mod multiview;
+pub mod objects;
 pub mod protocol;
 pub mod shard;
 pub mod stream;

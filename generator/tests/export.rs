@@ -7,13 +7,14 @@ use articulated::categories::CATEGORIES;
 use articulated::kinematics::link_poses;
 use articulated::objects::ArticulatedObject;
 use assets::{load_asset, ImportOptions};
+use assets::{Source, SourcedObject};
 use generator::config::GeneratorConfig;
-use generator::export::objects::{export_objects, write_object, ObjectToExport, Source};
-use generator::export::urdf::link_name;
-use generator::export::OutputError;
 use generator::generate::{build_object, object_pairs_with, pairs_of_object, Variant};
+use pairs::atomic::OutputError;
 use pairs::math::{Isometry3, Matrix3, Point3, Real, Translation3, UnitQuaternion, Vector3};
 use pairs::PairKind;
+use simulators::urdf::link_name;
+use simulators::{export_objects, write_object};
 
 fn config(category: &str, kind: PairKind) -> GeneratorConfig {
     GeneratorConfig {
@@ -40,13 +41,19 @@ fn triangles(object: &ArticulatedObject, link: usize) -> Vec<[Point3; 3]> {
 fn round_trip(config: &GeneratorConfig, index: u32) -> (ArticulatedObject, ArticulatedObject) {
     let object = build_object(config, index).expect("a built-in object");
     let dir = tempfile::tempdir().expect("temp dir");
-    let item = ObjectToExport {
+    let item = SourcedObject {
         object_id: index,
         object: object.clone(),
         source: Source::BuiltIn { split: "test".into() },
         surfaces: Vec::new(),
     };
-    let written = write_object(config, &item, dir.path(), &Default::default()).expect("exported");
+    let written = write_object(
+        &generator::objects::state_draw(config),
+        &item,
+        dir.path(),
+        &Default::default(),
+    )
+    .expect("exported");
     let urdf = dir.path().join(&written.folder).join("mobility.urdf");
     let imported = load_asset(&urdf, &ImportOptions::default())
         .unwrap_or_else(|e| panic!("{}: {e}", urdf.display()))
@@ -144,13 +151,19 @@ fn link_and_joint_names_follow_the_layout() {
     assert_eq!(unique.len(), names.len(), "joint names are unique: {names:?}");
     assert_eq!(link_name(10), "link_10");
     let dir = tempfile::tempdir().expect("temp dir");
-    let item = ObjectToExport {
+    let item = SourcedObject {
         object_id: 7,
         object,
         source: Source::Asset { path: "x".into() },
         surfaces: Vec::new(),
     };
-    let written = write_object(&config, &item, dir.path(), &Default::default()).expect("exported");
+    let written = write_object(
+        &generator::objects::state_draw(&config),
+        &item,
+        dir.path(),
+        &Default::default(),
+    )
+    .expect("exported");
     assert_eq!(written.folder, "000007_folding_table");
     let folder = dir.path().join(&written.folder);
     for file in ["mobility.urdf", "mobility_v2.json", "meta.json", "states.json"] {
@@ -167,8 +180,8 @@ fn link_and_joint_names_follow_the_layout() {
 #[test]
 fn a_non_empty_output_folder_is_refused_and_left_as_it_was() {
     let config = GeneratorConfig { objects: 2, ..config("laptop", PairKind::Sf2f) };
-    let objects: Vec<ObjectToExport> = (0..2)
-        .map(|i| ObjectToExport {
+    let objects: Vec<SourcedObject> = (0..2)
+        .map(|i| SourcedObject {
             object_id: i,
             object: build_object(&config, i).expect("object"),
             source: Source::BuiltIn { split: "test".into() },
@@ -179,22 +192,41 @@ fn a_non_empty_output_folder_is_refused_and_left_as_it_was() {
     let out = dir.path().join("objects");
     std::fs::create_dir(&out).expect("mkdir");
     std::fs::write(out.join("notes.txt"), "mine").expect("write");
-    let refused = export_objects(&config, &objects, &out, false, &Default::default(), |_| {});
-    assert!(matches!(
-        refused,
-        Err(generator::export::objects::ExportError::Output(OutputError::NotEmpty { .. }))
-    ));
+    let refused = export_objects(
+        &generator::objects::state_draw(&config),
+        &objects,
+        &out,
+        false,
+        &Default::default(),
+        |_| {},
+    );
+    assert!(matches!(refused, Err(simulators::ExportError::Output(OutputError::NotEmpty { .. }))));
     let left: Vec<_> = std::fs::read_dir(&out).expect("list").collect();
     assert_eq!(left.len(), 1);
     assert_eq!(std::fs::read_to_string(out.join("notes.txt")).expect("kept"), "mine");
-    let written =
-        export_objects(&config, &objects, &out, true, &Default::default(), |_| {}).expect("forced");
+    let written = export_objects(
+        &generator::objects::state_draw(&config),
+        &objects,
+        &out,
+        true,
+        &Default::default(),
+        |_| {},
+    )
+    .expect("forced");
     assert_eq!(written.len(), 2);
     assert!(!out.join("notes.txt").exists());
     assert!(out.join("000001_laptop/mobility.urdf").is_file());
     // Byte-identical when exported again.
     let again = dir.path().join("again");
-    export_objects(&config, &objects, &again, false, &Default::default(), |_| {}).expect("export");
+    export_objects(
+        &generator::objects::state_draw(&config),
+        &objects,
+        &again,
+        false,
+        &Default::default(),
+        |_| {},
+    )
+    .expect("export");
     for file in ["000000_laptop/mobility.urdf", "000001_laptop/states.json", "objects.json"] {
         assert_eq!(
             std::fs::read(out.join(file)).expect("a"),
@@ -216,14 +248,19 @@ fn exported_user_assets_read_back_into_the_same_pairs() {
             .unwrap_or_else(|e| panic!("{asset}: {e}"))
             .object;
         let dir = tempfile::tempdir().expect("temp dir");
-        let item = ObjectToExport {
+        let item = SourcedObject {
             object_id: 0,
             object: original.clone(),
             source: Source::Asset { path: asset.into() },
             surfaces: Vec::new(),
         };
-        let written =
-            write_object(&config, &item, dir.path(), &Default::default()).expect("exported");
+        let written = write_object(
+            &generator::objects::state_draw(&config),
+            &item,
+            dir.path(),
+            &Default::default(),
+        )
+        .expect("exported");
         let urdf = dir.path().join(&written.folder).join("mobility.urdf");
         let read_back = load_asset(&urdf, &ImportOptions::default()).expect("reads back").object;
         assert_eq!(read_back.joints, original.joints, "{asset}");

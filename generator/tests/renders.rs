@@ -9,19 +9,20 @@ use std::path::Path;
 
 use articulated::mesh::Mesh;
 use articulated::objects::{ArticulatedObject, Joint, Link};
+use assets::{Source, SourcedObject};
 use generator::config::GeneratorConfig;
-use generator::export::objects::{built_in_objects, ObjectToExport, Source};
-use generator::multiview::appearance::{Appearance, Lighting, Material};
-use generator::multiview::layout::gt::entry_motion;
-use generator::multiview::layout::{write_render, Layout};
-use generator::multiview::scene::RenderScene;
-use generator::multiview::shade::{shade, Shading};
-use generator::multiview::{RenderConfig, RenderJob};
+use generator::objects::built_in_objects;
 use nalgebra::{Isometry3, Matrix3, Matrix4, Point3, Vector3};
 use pairs::math::Real;
 use pairs::Intrinsics;
 use parry3d::query::{PointQuery, Ray, RayCast};
 use parry3d::shape::TriMesh;
+use renderer::appearance::{Appearance, Lighting, Material};
+use renderer::layout::gt::entry_motion;
+use renderer::layout::{write_render, Layout};
+use renderer::scene::RenderScene;
+use renderer::shade::{shade, Shading};
+use renderer::{RenderConfig, RenderJob};
 use scanner::camera::Camera;
 use serde_json::Value;
 
@@ -214,7 +215,7 @@ fn native_depth_and_labels_match_the_cameras() {
     let obj = root.join(&objects[0]);
     let record = json(&obj.join("object.json"));
     let scale = record["depth_scale"].as_f64().expect("scale") as Real;
-    let cameras = generator::multiview::cameras::read(&obj.join("cameras.json")).expect("cameras");
+    let cameras = renderer::cameras::read(&obj.join("cameras.json")).expect("cameras");
     assert_eq!(cameras.len(), 4);
     let labels = image::open(obj.join("state_0/label/0002.png")).expect("png").into_luma8();
     let depth = image::open(obj.join("state_0/depth/0002.png")).expect("png").into_luma16();
@@ -475,7 +476,7 @@ fn a_camera_file_is_used_as_given_and_bad_settings_are_refused() {
         RenderJob::new(&config, 0, object.clone(), Some(&cameras), Layout::Native).expect("job");
     assert_eq!(job.cameras, cameras);
     assert_eq!(job.view(&config, 1, 0).width, 50);
-    let built = ObjectToExport {
+    let built = SourcedObject {
         object_id: 7,
         object: object.object,
         source: Source::BuiltIn { split: "test".into() },
@@ -503,7 +504,7 @@ fn assert_red_body_and_blue_lid(root: &Path, file: &str) {
     let imported =
         assets::load_asset(&root.join(file), &assets::ImportOptions::default()).expect("asset");
     assert!(imported.surfaces.iter().all(|s| s.is_styled()));
-    let object = ObjectToExport {
+    let object = SourcedObject {
         object_id: 0,
         object: imported.object,
         source: Source::Asset { path: file.into() },
@@ -513,7 +514,7 @@ fn assert_red_body_and_blue_lid(root: &Path, file: &str) {
         width: 120,
         height: 90,
         views: 6,
-        placement: generator::multiview::cameras::Placement::Hemisphere,
+        placement: renderer::cameras::Placement::Hemisphere,
         ..RenderConfig::default()
     };
     let job = RenderJob::new(&config, 0, object, None, Layout::Native).expect("job");
@@ -605,14 +606,14 @@ fn back_projected_clouds_lie_on_the_states_and_move_with_their_parts() {
     let dir = tempfile::tempdir().expect("tmp");
     let root = dir.path().join("r");
     render(Layout::Native, 2, &root);
-    let pairs = generator::multiview::backproject::render_pairs(&root, 256).expect("pairs");
+    let pairs = renderer::backproject::render_pairs(&root, 256).expect("pairs");
     assert_eq!(pairs.len(), 2);
     let config = GeneratorConfig { objects: 2, ..GeneratorConfig::default() };
     let render_config = RenderConfig { states: 2, ..small_config() };
     for (object, pair) in built_in_objects(&config).expect("objects").into_iter().zip(&pairs) {
         let job = RenderJob::new(&render_config, 0, object, None, Layout::Native).expect("job");
         let mesh = |s: usize| {
-            let (v, t) = generator::multiview::posed_mesh(&job, s, None);
+            let (v, t) = renderer::job::posed_mesh(&job, s, None);
             TriMesh::new(v, t).expect("mesh")
         };
         let (m0, m1) = (mesh(0), mesh(1));

@@ -8,20 +8,19 @@
 use std::path::Path;
 
 use articulated::mesh::Mesh;
+use assets::{Source, SourcedObject};
 use generator::config::GeneratorConfig;
-use generator::export::collision::{Budget, FLAT_THICKNESS};
-use generator::export::objects::{
-    write_object, ExportOptions, ExportedObject, ObjectFormat, ObjectToExport, Source,
-};
-use generator::export::physics::PhysicsOptions;
 use generator::generate::build_object;
 use pairs::math::Point3;
+use simulators::collision::{Budget, FLAT_THICKNESS};
+use simulators::physics::PhysicsOptions;
+use simulators::{write_object, ExportOptions, ExportedObject, ObjectFormat};
 
-fn cabinet() -> (GeneratorConfig, ObjectToExport) {
+fn cabinet() -> (GeneratorConfig, SourcedObject) {
     let config =
         GeneratorConfig { categories: vec!["cabinet".into()], seed: 5, ..Default::default() };
     let object = build_object(&config, 0).expect("a cabinet");
-    let item = ObjectToExport {
+    let item = SourcedObject {
         object_id: 0,
         object,
         source: Source::BuiltIn { split: "test".into() },
@@ -30,10 +29,11 @@ fn cabinet() -> (GeneratorConfig, ObjectToExport) {
     (config, item)
 }
 
-fn export(item: &ObjectToExport, options: &ExportOptions) -> (tempfile::TempDir, ExportedObject) {
+fn export(item: &SourcedObject, options: &ExportOptions) -> (tempfile::TempDir, ExportedObject) {
     let (config, _) = cabinet();
     let dir = tempfile::tempdir().expect("temp dir");
-    let written = write_object(&config, item, dir.path(), options).expect("exported");
+    let written = write_object(&generator::objects::state_draw(&config), item, dir.path(), options)
+        .expect("exported");
     (dir, written)
 }
 

@@ -22,17 +22,13 @@ impl Normalisation {
     /// The normalisation of a set of points, or `None` if the set is empty, holds a
     /// non-finite coordinate, or its bounding box has a zero diagonal.
     pub fn of_points(points: &[Point3]) -> Option<Self> {
-        let first = points.first()?;
-        let (mut lo, mut hi) = (first.coords, first.coords);
-        for p in points {
-            if !p.coords.iter().all(|c| c.is_finite()) {
-                return None;
-            }
-            lo = lo.inf(&p.coords);
-            hi = hi.sup(&p.coords);
+        if !points.iter().all(|p| p.coords.iter().all(|c| c.is_finite())) {
+            return None;
         }
+        let (lo, hi) = crate::math::bounds(points)?;
         let scale = (hi - lo).norm();
-        (scale > 0.0 && scale.is_finite()).then(|| Self { centre: (lo + hi) * 0.5, scale })
+        (scale > 0.0 && scale.is_finite())
+            .then(|| Self { centre: (lo.coords + hi.coords) * 0.5, scale })
     }
 
     /// Maps a point from the object frame to the normalised frame.

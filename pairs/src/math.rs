@@ -63,3 +63,24 @@ pub fn perpendicular(axis: &Vector3) -> Vector3 {
     // `least` is at most 1/√3 along a unit `axis`, so the cross product has norm ≥ √(2/3).
     unit_or(&axis.cross(&least), Vector3::x())
 }
+
+/// The axis-aligned bounding box of `points`: its lowest and highest corner, or `None` when
+/// there are no points. The one bounding-box loop of the workspace.
+///
+/// ```
+/// use pairs::math::{bounds, Point3};
+/// let points = [Point3::new(1.0, -2.0, 0.5), Point3::new(-1.0, 3.0, 0.0)];
+/// assert_eq!(bounds(&points), Some((Point3::new(-1.0, -2.0, 0.0), Point3::new(1.0, 3.0, 0.5))));
+/// assert_eq!(bounds(std::iter::empty::<Point3>()), None);
+/// ```
+pub fn bounds<P: std::borrow::Borrow<Point3>>(
+    points: impl IntoIterator<Item = P>,
+) -> Option<(Point3, Point3)> {
+    points.into_iter().fold(None, |b, p| {
+        let p = p.borrow();
+        Some(match b {
+            None => (*p, *p),
+            Some((lo, hi)) => (lo.inf(p), hi.sup(p)),
+        })
+    })
+}

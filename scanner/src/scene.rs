@@ -53,11 +53,8 @@ impl PosedScene {
             triangles.extend(l.mesh.triangles.iter().map(|t| t.map(|i| i + first)));
             link_of_triangle.extend(std::iter::repeat_n(link as u32, l.mesh.triangles.len()));
         }
-        let (min, max) = vertices
-            .iter()
-            .fold((Point3::from([Real::MAX; 3]), Point3::from([Real::MIN; 3])), |(lo, hi), v| {
-                (lo.inf(v), hi.sup(v))
-            });
+        let (min, max) =
+            pairs::math::bounds(&vertices).unwrap_or((Point3::origin(), Point3::origin()));
         let mesh =
             TriMesh::new(vertices, triangles).map_err(|e| SceneError::Mesh(e.to_string()))?;
         Ok(Self { mesh, poses: poses.to_vec(), link_of_triangle, min, max })

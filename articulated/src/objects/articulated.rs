@@ -190,6 +190,12 @@ impl ArticulatedObject {
         parents
     }
 
+    /// A state as a map from joint name to value (`values` in the order of
+    /// [`Self::joints`]), as the provenance and `states.json` files write it.
+    pub fn configuration(&self, values: &[Real]) -> std::collections::BTreeMap<String, Real> {
+        self.joints.iter().zip(values).map(|(j, &v)| (j.name.clone(), v)).collect()
+    }
+
     /// Sets every mimic joint of a state from its leader, so that the values agree with
     /// the object's couplings; a no-op for objects without mimic joints.
     pub fn follow_mimics(&self, values: &mut [Real]) {

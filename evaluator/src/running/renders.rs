@@ -1,7 +1,7 @@
 //! The render benchmark (`--all`): a small native render of the test categories
 //! (`datasets/render`: two states, eight fixed cameras on a sphere), its depth images
 //! back-projected into a pair of point clouds per object
-//! ([`generator::multiview::backproject`]), and every row that runs on a pair's input (a
+//! ([`renderer::backproject`]), and every row that runs on a pair's input (a
 //! whole method, or a segmenter on a method's flow; the `gt` oracle from the true parts and
 //! motions) scored on the joints it implies, in every convention, into the render joints
 //! board ([`crate::boards::render_joints`]). Joints are the method's own where it gives
@@ -12,16 +12,16 @@ use std::collections::{BTreeMap, HashMap};
 use std::path::{Path, PathBuf};
 
 use generator::config::GeneratorConfig;
-use generator::export::objects::built_in_objects;
-use generator::multiview::backproject::{render_pairs, RenderPair};
-use generator::multiview::layout::RENDER_FORMAT_VERSION;
-use generator::multiview::layout::{write_render, Layout};
-use generator::multiview::{RenderConfig, RenderJob};
+use generator::objects::built_in_objects;
 use pairs::joint_estimate::{estimate_joint, estimate_joints, JointParams};
 use pairs::math::Vector3;
 use pairs::renders::{RenderJoint, GROUND_TRUTH_FILE, RENDER_FILE};
 use pairs::{Cloud, JointKind, PairInput, PairKind, Prediction, Similarity};
 use rayon::prelude::*;
+use renderer::backproject::{render_pairs, RenderPair};
+use renderer::layout::RENDER_FORMAT_VERSION;
+use renderer::layout::{write_render, Layout};
+use renderer::{RenderConfig, RenderJob};
 
 use crate::error::EvalError;
 use crate::rows::registry::{Board, Entry, FlowSource, Runner};

@@ -11,9 +11,9 @@ use pairs::{PairKind, SetMode};
 
 use crate::commands::{objects, render};
 use crate::config::GeneratorConfig;
-use crate::export::formats::Format;
 use crate::shard::parse_shard;
 use articulated::categories::Split;
+use formats::Format;
 
 /// Generate a dataset of articulated shape pairs (P, Q) with ground-truth parts, motions,
 /// flow, correspondences and joints, following the test protocol of Yi et al. 2018.

@@ -4,18 +4,17 @@
 use std::path::PathBuf;
 
 use crate::asset_dataset::{load_assets, relative};
-use crate::export::collision::Budget;
-use crate::export::formats::{export_dataset, Format};
-use crate::export::inertia::DEFAULT_DENSITY;
-use crate::export::objects::{
-    built_in_objects, export_objects, ExportOptions, ExportedObject, ObjectFormat, ObjectToExport,
-    Source,
-};
-use crate::export::physics::PhysicsOptions;
+use crate::objects::{built_in_objects, state_draw};
 use crate::shard::merge_shards;
 use anyhow::{bail, Context, Result};
+use assets::{Source, SourcedObject};
+use formats::{export_dataset, Format};
 use indicatif::{ProgressBar, ProgressStyle};
 use pairs::dataset::Manifest;
+use simulators::collision::Budget;
+use simulators::inertia::DEFAULT_DENSITY;
+use simulators::physics::PhysicsOptions;
+use simulators::{export_objects, ExportOptions, ExportedObject, ObjectFormat};
 
 use crate::config::GeneratorConfig;
 
@@ -82,7 +81,8 @@ pub(crate) fn export_objects_command(
     let objects = selected_objects(selection, &config, "exported")?;
     let bar = progress_bar(objects.len() as u64, "objects");
     bar.set_message(format!("exporting {}", out.display()));
-    let written = export_objects(&config, &objects, out, force, &options, |n| bar.set_position(n))
+    let states = state_draw(&config);
+    let written = export_objects(&states, &objects, out, force, &options, |n| bar.set_position(n))
         .with_context(|| format!("exporting objects to {}", out.display()))?;
     bar.finish_and_clear();
     let formats: Vec<&str> = options.formats.iter().map(|f| f.as_str()).collect();
@@ -140,7 +140,7 @@ pub(crate) fn selected_objects(
     selection: &Selection,
     config: &GeneratorConfig,
     what: &str,
-) -> Result<Vec<ObjectToExport>> {
+) -> Result<Vec<SourcedObject>> {
     let objects = match &selection.assets {
         Some(root) => {
             let sources = load_assets(root, config)
@@ -150,7 +150,7 @@ pub(crate) fn selected_objects(
             for (i, source) in sources.into_iter().enumerate() {
                 let path = relative(root, &source.path);
                 match source.loaded {
-                    Ok(imported) => objects.push(ObjectToExport {
+                    Ok(imported) => objects.push(SourcedObject {
                         object_id: i as u32,
                         object: imported.object,
                         source: Source::Asset { path },

@@ -2,10 +2,10 @@
 
 use std::path::PathBuf;
 
-use crate::multiview::cameras::{self, Placement};
-use crate::multiview::layout::{write_render, Layout};
-use crate::multiview::{RenderConfig, RenderJob};
 use anyhow::{bail, Context, Result};
+use renderer::cameras::{self, Placement};
+use renderer::layout::{write_render, Layout};
+use renderer::{RenderConfig, RenderJob};
 
 use crate::commands::args::Selection;
 use crate::commands::objects::{progress_bar, selected_objects};

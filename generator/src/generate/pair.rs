@@ -2,7 +2,7 @@
 //! a viewpoint that shows every part), checked for the parts' point counts, and labelled
 //! with the ground truth.
 
-use pairs::math::{Isometry3, Point3, Real};
+use pairs::math::{Isometry3, Real};
 use pairs::parts::part_sizes;
 use pairs::scan::{PairImages, ScanImages};
 use pairs::{Cloud, Pair, PairInput, Pose, Provenance, Scan, Scans};
@@ -17,7 +17,8 @@ use articulated::seed::{rng_for, Rng, Stream};
 use scanner::visibility::is_visible;
 use scanner::{images, scan_side, Requirements, ScannedSide, SURFACE_TOLERANCE};
 
-use super::{configuration, GenerateError, GeneratedPair, Variant, GENERATOR_VERSION};
+use super::{GenerateError, GeneratedPair, Variant};
+use articulated::GENERATOR_VERSION;
 
 /// One object of a dataset and what every pair of it needs.
 pub(super) struct Scene<'a> {
@@ -150,8 +151,8 @@ pub(super) fn make_pair(
         seed: config.seed,
         seed_q: partner.map(|o| o.seed),
         generator_version: GENERATOR_VERSION.into(),
-        joints_p: configuration(object, values_p),
-        joints_q: configuration(object_q, values_q),
+        joints_p: object.configuration(values_p),
+        joints_q: object_q.configuration(values_q),
         pose_p: Some(Pose::of(&global_p)),
         pose_q: Some(Pose::of(&global_q)),
     };
@@ -191,15 +192,12 @@ pub(super) fn object_size(
     object: &ArticulatedObject,
     poses: &[Isometry3],
 ) -> Result<Real, GenerateError> {
-    let (min, max) = object
+    let posed = object
         .links
         .iter()
         .zip(poses)
-        .flat_map(|(l, pose)| l.mesh.vertices.iter().map(move |v| pose * v))
-        .fold((Point3::from([Real::MAX; 3]), Point3::from([Real::MIN; 3])), |(lo, hi), v| {
-            (lo.inf(&v), hi.sup(&v))
-        });
-    Ok((max - min).norm())
+        .flat_map(|(l, pose)| l.mesh.vertices.iter().map(move |v| pose * v));
+    Ok(pairs::math::bounds(posed).map_or(0.0, |(min, max)| (max - min).norm()))
 }
 
 /// One side's points of `object`: N surface samples, or a scan when `parts` is given.

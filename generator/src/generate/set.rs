@@ -21,7 +21,8 @@ use articulated::seed::{rng_for, Stream};
 use scanner::images;
 
 use super::pair::{object_size, observe_side, presence, Observation};
-use super::{build_object, configuration, GenerateError, GENERATOR_VERSION};
+use super::{build_object, GenerateError};
+use articulated::GENERATOR_VERSION;
 
 /// Draws of K states tried per set before the object is declared unable to give it.
 pub const SET_ATTEMPTS: u32 = 32;
@@ -384,7 +385,7 @@ fn label_set(
             .zip(&globals)
             .map(|(&s, g)| ViewProvenance {
                 articulation: s as u32,
-                joints: configuration(object, &states[s]),
+                joints: object.configuration(&states[s]),
                 pose: Some(Pose::of(g)),
             })
             .collect(),

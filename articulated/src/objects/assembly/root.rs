@@ -130,10 +130,7 @@ mod tests {
             let mesh = root.mesh();
             let error = (mesh.area() - root.area).abs() / root.area;
             assert!(error < 1e-3, "{:?}: {} vs {}", root.shape, mesh.area(), root.area);
-            let (lo, hi) = mesh
-                .vertices
-                .iter()
-                .fold((root.block.max, root.block.min), |(lo, hi), v| (lo.inf(v), hi.sup(v)));
+            let (lo, hi) = pairs::math::bounds(&mesh.vertices).expect("a root has vertices");
             assert!((lo - root.block.min).norm() < 1e-4 && (hi - root.block.max).norm() < 1e-4);
         }
     }

@@ -8,7 +8,7 @@ use pairs::math::{Isometry3, Matrix3, Point3, Real, Rotation3, UnitQuaternion, V
 use pairs::Intrinsics;
 use serde::{Deserialize, Serialize};
 
-use super::RenderError;
+use crate::RenderError;
 use scanner::camera::Camera;
 
 /// Where the cameras stand.

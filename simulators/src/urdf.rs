@@ -21,8 +21,8 @@ use pairs::math::{Point3, Real};
 use pairs::JointKind;
 use serde_json::{json, Value};
 
-use super::inertia::Inertial;
-use super::physics::LinkPhysics;
+use crate::inertia::Inertial;
+use crate::physics::LinkPhysics;
 use articulated::mesh::Mesh;
 use articulated::objects::{ArticulatedObject, Joint};
 
@@ -67,7 +67,7 @@ pub fn link_origins(object: &ArticulatedObject) -> Vec<Point3> {
 }
 
 /// The text of `mobility.urdf`; `physics` holds each link's collision hulls and mass
-/// properties ([`super::physics::object_physics`]).
+/// properties ([`crate::physics::object_physics`]).
 pub fn urdf_text(object: &ArticulatedObject, physics: &[LinkPhysics]) -> String {
     let origins = link_origins(object);
     let mut out = String::new();
@@ -159,18 +159,6 @@ fn inertial(m: &Inertial, origin: &Point3) -> String {
         t[1][2],
         t[2][2],
     )
-}
-
-/// Lowest and highest corner of a set of points (zeros when empty).
-pub fn bounds<'a>(points: impl Iterator<Item = &'a Point3>) -> (Point3, Point3) {
-    let mut b: Option<(Point3, Point3)> = None;
-    for p in points {
-        b = Some(match b {
-            None => (*p, *p),
-            Some((lo, hi)) => (lo.inf(p), hi.sup(p)),
-        });
-    }
-    b.unwrap_or((Point3::origin(), Point3::origin()))
 }
 
 /// The text of one link's OBJ file: its rest-frame vertices (printed so that an f32

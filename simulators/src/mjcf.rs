@@ -11,7 +11,7 @@
 //! - Visual geoms (`class="visual"`, group 2) use `textured_objs/link_i.obj` and never
 //!   collide; collision geoms (`class="collision"`, group 3) are the link's convex hulls
 //!   (`collision/link_i_hull_k.obj`). Each body's `<inertial>` is the link's mass
-//!   properties ([`super::inertia`]).
+//!   properties ([`crate::inertia`]).
 //! - A joint's two links never collide with each other (`<contact><exclude>`), as in
 //!   URDF loaders; any other two links do.
 //! - The object frame is Y-up, as the generator's: gravity is `0 -9.81 0`.
@@ -20,8 +20,8 @@ use std::fmt::Write as _;
 
 use pairs::JointKind;
 
-use super::physics::LinkPhysics;
-use super::urdf::{escape, hull_path, link_name, link_origins, mesh_path, triple, widen};
+use crate::physics::LinkPhysics;
+use crate::urdf::{escape, hull_path, link_name, link_origins, mesh_path, triple, widen};
 use articulated::objects::ArticulatedObject;
 
 /// Gravity, object frame (Y-up), metres per second squared.

@@ -20,6 +20,7 @@
 use std::collections::BTreeMap;
 
 use pairs::math::{Point3, Real, Vector3};
+use pairs::sampling::farthest_point_sampling;
 use parry3d::query::PointQuery;
 use parry3d::shape::{TriMesh, Triangle};
 use parry3d::transformation::try_convex_hull;
@@ -114,7 +115,8 @@ impl Solid {
                 Some((n, t.a))
             })
             .collect();
-        let (lo, hi) = super::urdf::bounds(hull.vertices.iter());
+        let (lo, hi) =
+            pairs::math::bounds(&hull.vertices).unwrap_or((Point3::origin(), Point3::origin()));
         Self { planes, triangles, tolerance: 1e-6 * (hi - lo).norm().max(Real::EPSILON) }
     }
 
@@ -368,8 +370,8 @@ fn merge_to(mut hulls: Vec<Hull>, max: usize) -> Vec<Hull> {
     hulls.into_iter().zip(alive).filter_map(|(h, a)| a.then_some(h)).collect()
 }
 
-/// `count` of `points` spread as far apart as possible (greedy farthest-point order from
-/// the first point with the lowest coordinates).
+/// `count` of `points` spread as far apart as possible: farthest point sampling
+/// ([`pairs::sampling`]) from the first point with the lowest coordinates.
 fn farthest_points(points: &[Point3], count: usize) -> Vec<Point3> {
     let Some(start) = (0..points.len()).min_by(|&a, &b| {
         let key = |p: &Point3| [p.x, p.y, p.z];
@@ -377,20 +379,7 @@ fn farthest_points(points: &[Point3], count: usize) -> Vec<Point3> {
     }) else {
         return Vec::new();
     };
-    let mut chosen = vec![points[start]];
-    let mut distance: Vec<Real> = points.iter().map(|p| (p - points[start]).norm()).collect();
-    while chosen.len() < count.min(points.len()) {
-        let (next, _) = distance
-            .iter()
-            .enumerate()
-            .max_by(|a, b| a.1.total_cmp(b.1).then(b.0.cmp(&a.0)))
-            .expect("points is not empty");
-        chosen.push(points[next]);
-        for (d, p) in distance.iter_mut().zip(points) {
-            *d = d.min((p - points[next]).norm());
-        }
-    }
-    chosen
+    farthest_point_sampling(points, count, start).into_iter().map(|i| points[i]).collect()
 }
 
 /// Points on a surface: vertices, edge midpoints and face centres.

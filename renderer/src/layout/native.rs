@@ -1,7 +1,7 @@
 //! Our render layout (docs/FORMAT.md, "Renders"): per object
 //! - `object.json`: category, source, links and their parts, the states, every joint in
 //!   every state (object frame), the material, the depth scale;
-//! - `cameras.json`: the cameras ([`super::super::cameras::CameraFile`], OpenCV axes,
+//! - `cameras.json`: the cameras ([`crate::cameras::CameraFile`], OpenCV axes,
 //!   camera to object frame; the same cameras see every state);
 //! - `state_<s>/{rgb,depth,label,normal}/<view, 4 digits>.png`: 8-bit RGB; 16-bit depth
 //!   along the optical axis in units of `depth_scale` (0: nothing); 8-bit part id + 1 (0:
@@ -15,11 +15,11 @@ use pairs::math::Real;
 use serde::Serialize;
 
 use super::{each_view, u16_bytes, write_json, write_png};
-use crate::export::objects::Source;
-use crate::multiview::appearance::Appearance;
-use crate::multiview::cameras::{CameraFile, CameraRecord};
-use crate::multiview::shade::{normal8, rgb8};
-use crate::multiview::{JointStates, RenderConfig, RenderError, RenderJob};
+use crate::appearance::Appearance;
+use crate::cameras::{CameraFile, CameraRecord};
+use crate::shade::{normal8, rgb8};
+use crate::{JointStates, RenderConfig, RenderError, RenderJob};
+use assets::Source;
 
 /// `object.json`.
 #[derive(Debug, Serialize)]

@@ -1,12 +1,12 @@
 //! What a simulator needs beyond the visual meshes, computed once per object and written
-//! into every format (URDF, MJCF, USD): each link's collision hulls ([`super::collision`])
-//! and mass properties ([`super::inertia`]).
+//! into every format (URDF, MJCF, USD): each link's collision hulls ([`crate::collision`])
+//! and mass properties ([`crate::inertia`]).
 
 use rayon::prelude::*;
 use serde::Serialize;
 
-use super::collision::{decompose, Budget, LinkCollision};
-use super::inertia::{inertial, Inertial, DEFAULT_DENSITY};
+use crate::collision::{decompose, Budget, LinkCollision};
+use crate::inertia::{inertial, Inertial, DEFAULT_DENSITY};
 use articulated::objects::ArticulatedObject;
 
 /// Settings of the physical properties.
@@ -78,7 +78,7 @@ pub fn summary(links: &[LinkPhysics]) -> CollisionSummary {
         mass: links.iter().map(|l| l.inertial.mass).sum(),
         links_massed_by_hulls: links
             .iter()
-            .filter(|l| l.inertial.source == super::inertia::MassSource::Hulls)
+            .filter(|l| l.inertial.source == crate::inertia::MassSource::Hulls)
             .count(),
         links_with_notes: links.iter().filter(|l| !l.collision.notes.is_empty()).count(),
     }

@@ -5,8 +5,8 @@ use pairs::math::{Real, Vector3};
 use pairs::PartId;
 use rayon::prelude::*;
 
-use super::appearance::{Appearance, Lighting};
-use super::scene::RenderScene;
+use crate::appearance::{Appearance, Lighting};
+use crate::scene::RenderScene;
 use scanner::camera::Camera;
 use scanner::render::window_of;
 

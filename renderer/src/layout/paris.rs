@@ -32,8 +32,9 @@ use serde_json::{json, Map, Value};
 
 use super::gt::{part_joints, trans_json, write_meshes, WorldFrame};
 use super::{each_view, write_json, write_png};
-use crate::multiview::shade::rgb8;
-use crate::multiview::{RenderConfig, RenderError, RenderJob, ViewImages};
+use crate::shade::rgb8;
+use crate::shade::ViewImages;
+use crate::{RenderConfig, RenderError, RenderJob};
 use scanner::camera::Camera;
 
 /// State folders, in state order.

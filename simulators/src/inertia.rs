@@ -6,7 +6,7 @@
 //!   pieces that overlap count twice, as the generator's own volume does).
 //! - A link with an open or non-manifold piece encloses no well-defined volume (the
 //!   integral would depend on the origin): it gets the mass properties of its collision
-//!   hulls instead ([`super::collision`]), and says so ([`MassSource::Hulls`]).
+//!   hulls instead ([`crate::collision`]), and says so ([`MassSource::Hulls`]).
 //!
 //! Every principal moment is at least [`MIN_MOMENT_FRACTION`] of the largest, so that a
 //! flat link still has a positive-definite inertia that simulators accept.
@@ -15,7 +15,7 @@ use pairs::math::{Point3, Real, UnitQuaternion};
 use parry3d::mass_properties::MassProperties;
 use serde::Serialize;
 
-use super::collision::Hull;
+use crate::collision::Hull;
 use articulated::mesh::Mesh;
 
 /// Default density, kilograms per cubic object unit (the built-in categories are modelled
@@ -113,7 +113,7 @@ mod tests {
     fn an_open_mesh_takes_its_hulls() {
         let mut mesh = Mesh::cuboid(Point3::new(0.0, 0.0, 0.0), Point3::new(1.0, 1.0, 1.0));
         mesh.triangles.truncate(10);
-        let c = super::super::collision::decompose(&mesh, Default::default());
+        let c = crate::collision::decompose(&mesh, Default::default());
         let i = inertial(&mesh, false, &c.hulls, 3.0);
         assert_eq!(i.source, MassSource::Hulls);
         assert!((i.mass - 3.0).abs() < 1e-4, "{i:?}");

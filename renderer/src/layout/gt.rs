@@ -14,7 +14,8 @@ use serde::Serialize;
 use serde_json::{json, Value};
 
 use super::write_bytes;
-use crate::multiview::{bounds, posed_mesh, JointStates, RenderError, RenderJob};
+use crate::job::{bounds, posed_mesh};
+use crate::{JointStates, RenderError, RenderJob};
 use scanner::camera::Camera;
 
 /// The map from our object frame (Y up) to a layout's world: `x' = scale * C * (x - centre)`

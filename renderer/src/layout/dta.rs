@@ -24,8 +24,8 @@ use image::ExtendedColorType;
 use super::gt::{part_joints, trans_json, write_meshes};
 use super::native::depth_units;
 use super::{each_view, u16_bytes, write_bytes, write_json, write_png};
-use crate::multiview::shade::rgb8;
-use crate::multiview::{RenderConfig, RenderError, RenderJob};
+use crate::shade::rgb8;
+use crate::{RenderConfig, RenderError, RenderJob};
 
 /// Writes one object; returns its folder name.
 pub fn write_object(

@@ -7,7 +7,7 @@
 //!   link, named as in the URDF (`link_i`), side by side, each placed at its link frame's
 //!   rest position (a translation; links are never rotated at rest) with
 //!   `PhysicsRigidBodyAPI` and `PhysicsMassAPI` (mass, centre of mass, principal moments
-//!   and axes from [`super::inertia`]). Under it, `visual` is the link's mesh, and
+//!   and axes from [`crate::inertia`]). Under it, `visual` is the link's mesh, and
 //!   `collision/hull_k` its convex hulls (`PhysicsCollisionAPI`,
 //!   `PhysicsMeshCollisionAPI` with `convexHull` approximation, purpose `guide`).
 //! - `/<category>/joints`: a `PhysicsFixedJoint` from the world to `link_0`
@@ -27,8 +27,8 @@ use std::fmt::Write as _;
 use pairs::math::{Real, UnitQuaternion, Vector3};
 use pairs::JointKind;
 
-use super::physics::LinkPhysics;
-use super::urdf::{base_joint_name, link_name, link_origins, widen};
+use crate::physics::LinkPhysics;
+use crate::urdf::{base_joint_name, link_name, link_origins, widen};
 use articulated::mesh::Mesh;
 use articulated::objects::ArticulatedObject;
 

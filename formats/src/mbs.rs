@@ -20,9 +20,9 @@ use pairs::{Pair, Set};
 use zip::write::SimpleFileOptions;
 use zip::{CompressionMethod, DateTime, ZipWriter};
 
-use super::npy;
-use super::pickle::{self, Key};
-use super::FormatError;
+use crate::npy;
+use crate::pickle::{self, Key};
+use crate::FormatError;
 
 /// How far the scale of a part motion mapped into the common frame may be from 1 before
 /// the motion is refused as not rigid (it is 1 up to rounding by construction).

@@ -1,5 +1,5 @@
-//! `generator export --format`: a dataset folder rewritten in the layouts other methods
-//! read, so that their code runs on our pairs unchanged.
+//! Datasets for other methods (`generator export --format`): a dataset folder rewritten in
+//! the layouts other methods read, so that their code runs on our pairs unchanged.
 //!
 //! - [`Format::YiMat`]: the `.mat` files of the paper authors' code
 //!   (ericyi/articulated-part-induction): `pairs.mat`, `flow.mat`, `ids.txt` (module `yi`);
@@ -23,7 +23,7 @@ use std::path::{Path, PathBuf};
 use pairs::dataset::Dataset;
 use pairs::DatasetError;
 
-use super::output::{write_file, OutputError, Staging};
+use pairs::atomic::{write_file, OutputError, Staging};
 
 /// An export layout.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -3,12 +3,12 @@
 //! dataset protocol draws for them.
 //!
 //! One folder per object, `<object id, 6 digits>_<category>/`:
-//! - `mobility.urdf`, `textured_objs/link_<i>.obj`, `mobility_v2.json` ([`super::urdf`]);
+//! - `mobility.urdf`, `textured_objs/link_<i>.obj`, `mobility_v2.json` ([`crate::urdf`]);
 //! - `collision/link_<i>_hull_<k>.obj`: each link's convex collision hulls
-//!   ([`super::collision`]), used by every format; masses and inertias from the link's
-//!   geometry and a density ([`super::inertia`]);
-//! - `mobility.xml` (MJCF, [`super::mjcf`]) and `mobility.usda` (USD with UsdPhysics,
-//!   [`super::usd`]), from the same description (each can be left out, [`ObjectFormat`]);
+//!   ([`crate::collision`]), used by every format; masses and inertias from the link's
+//!   geometry and a density ([`crate::inertia`]);
+//! - `mobility.xml` (MJCF, [`crate::mjcf`]) and `mobility.usda` (USD with UsdPhysics,
+//!   [`crate::usd`]), from the same description (each can be left out, [`ObjectFormat`]);
 //! - `meta.json`: category, object id, seed, split, generator version, where the object
 //!   came from (built in or an asset file), each URDF link's name in the generator, and
 //!   each link's mass, collision hulls, their fit and any fallback;
@@ -24,17 +24,17 @@ use std::path::Path;
 use rayon::prelude::*;
 use serde::Serialize;
 
-use super::collision::Fit;
-use super::inertia::MassSource;
-use super::mjcf::mjcf_text;
-use super::output::{write_file, OutputError, Staging};
-use super::physics::{object_physics, summary, CollisionSummary, PhysicsOptions};
-use super::urdf::{hull_path, link_name, mesh_path, mobility_json, obj_text, urdf_text};
-use super::usd::usda_text;
-use crate::config::GeneratorConfig;
-use crate::generate::{configuration, object_states, GENERATOR_VERSION};
+use crate::collision::Fit;
+use crate::inertia::MassSource;
+use crate::mjcf::mjcf_text;
+use crate::physics::{object_physics, summary, CollisionSummary, PhysicsOptions};
+use crate::urdf::{hull_path, link_name, mesh_path, mobility_json, obj_text, urdf_text};
+use crate::usd::usda_text;
 use articulated::mesh::Mesh;
-use articulated::objects::{identifier, ArticulatedObject};
+use articulated::GENERATOR_VERSION;
+use assets::SourcedObject;
+use pairs::atomic::{write_file, OutputError, Staging};
+use pairs::math::Real;
 
 /// Version of the object folder layout, in every `meta.json`.
 pub const OBJECT_FORMAT_VERSION: u32 = 2;
@@ -116,36 +116,6 @@ pub enum ExportError {
     Empty,
 }
 
-/// Where an exported object came from.
-#[derive(Debug, Clone, PartialEq, Serialize)]
-#[serde(tag = "kind", rename_all = "snake_case")]
-pub enum Source {
-    /// A built-in category, object `object_id` of a dataset with the config's seed.
-    BuiltIn {
-        /// The split the categories were drawn from.
-        split: String,
-    },
-    /// A user asset.
-    Asset {
-        /// The asset's main file, relative to the folder given to `--assets`.
-        path: String,
-    },
-}
-
-/// One object to export.
-#[derive(Debug, Clone)]
-pub struct ObjectToExport {
-    /// Its index in the dataset it belongs to (the folder's number).
-    pub object_id: u32,
-    /// The object.
-    pub object: ArticulatedObject,
-    /// Where it came from.
-    pub source: Source,
-    /// Each link's materials and textures from the asset (`generator render`); empty for
-    /// the built-in objects, which get a procedural material.
-    pub surfaces: Vec<assets::surface::Surface>,
-}
-
 /// One exported object.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct ExportedObject {
@@ -184,7 +154,7 @@ struct Meta<'a> {
     category: &'a str,
     object_id: u32,
     seed: u64,
-    source: &'a Source,
+    source: &'a assets::Source,
     generator_version: &'static str,
     /// URDF link name -> the generator's link name.
     links: BTreeMap<String, &'a str>,
@@ -209,35 +179,25 @@ struct States {
     states: Vec<BTreeMap<String, f32>>,
 }
 
-/// The built-in objects a config selects (objects `0..config.objects`, categories in turn).
-pub fn built_in_objects(
-    config: &GeneratorConfig,
-) -> Result<Vec<ObjectToExport>, crate::generate::GenerateError> {
-    (0..config.objects)
-        .into_par_iter()
-        .map(|i| {
-            let object = crate::generate::build_object(config, i)?;
-            Ok(ObjectToExport {
-                object_id: i,
-                object,
-                source: Source::BuiltIn { split: config.split.as_str().into() },
-                surfaces: Vec::new(),
-            })
-        })
-        .collect()
-}
+/// The joint values of each state of an object, in the order of its joints.
+pub type DrawStates<'a> = dyn Fn(&SourcedObject) -> Vec<Vec<Real>> + Sync + 'a;
 
-/// Folder name of an object: its id (6 digits, so that folders sort in object order) and
-/// its category.
-pub fn folder_name(object_id: u32, category: &str) -> String {
-    format!("{object_id:06}_{}", identifier(category))
+/// The articulation states an object folder's `states.json` lists: how they were drawn, and
+/// the draw (the generator's protocol, so that state `k` is the dataset's articulation `k`).
+pub struct StateDraw<'a> {
+    /// The seed the states are drawn with.
+    pub seed: u64,
+    /// The probability of a joint at rest, in the draw.
+    pub rest_probability: f64,
+    /// The joint values of each state of an object, in the order of its joints.
+    pub draw: Box<DrawStates<'a>>,
 }
 
 /// Writes every object into `out` (refused if `out` is not empty, unless `force`), plus an
 /// `objects.json` listing them; `progress` gets the count written so far.
 pub fn export_objects(
-    config: &GeneratorConfig,
-    objects: &[ObjectToExport],
+    states: &StateDraw<'_>,
+    objects: &[SourcedObject],
     out: &Path,
     force: bool,
     options: &ExportOptions,
@@ -250,7 +210,7 @@ pub fn export_objects(
     let mut exported = Vec::with_capacity(objects.len());
     for batch in objects.chunks(BATCH) {
         let written: Vec<Result<ExportedObject, ExportError>> =
-            batch.par_iter().map(|o| write_object(config, o, staging.path(), options)).collect();
+            batch.par_iter().map(|o| write_object(states, o, staging.path(), options)).collect();
         for w in written {
             exported.push(w?);
             progress(exported.len() as u64);
@@ -263,13 +223,13 @@ pub fn export_objects(
 
 /// Writes one object's folder under `root`.
 pub fn write_object(
-    config: &GeneratorConfig,
-    item: &ObjectToExport,
+    states: &StateDraw<'_>,
+    item: &SourcedObject,
     root: &Path,
     options: &ExportOptions,
 ) -> Result<ExportedObject, ExportError> {
     let object = &item.object;
-    let folder = folder_name(item.object_id, &object.category);
+    let folder = item.folder_name();
     let dir = root.join(&folder);
     for sub in ["textured_objs", "collision"] {
         let sub = dir.join(sub);
@@ -308,7 +268,7 @@ pub fn write_object(
         model_cat: &object.category,
         category: &object.category,
         object_id: item.object_id,
-        seed: config.seed,
+        seed: states.seed,
         source: &item.source,
         generator_version: GENERATOR_VERSION,
         links: object
@@ -336,15 +296,12 @@ pub fn write_object(
             .collect(),
     };
     write(&dir.join("meta.json"), pretty(&meta).as_bytes())?;
-    let states = States {
-        seed: config.seed,
-        rest_probability: config.rest_probability,
-        states: object_states(config, object, item.object_id)
-            .iter()
-            .map(|values| configuration(object, values))
-            .collect(),
+    let listed = States {
+        seed: states.seed,
+        rest_probability: states.rest_probability,
+        states: (states.draw)(item).iter().map(|values| object.configuration(values)).collect(),
     };
-    write(&dir.join("states.json"), pretty(&states).as_bytes())?;
+    write(&dir.join("states.json"), pretty(&listed).as_bytes())?;
     Ok(ExportedObject {
         folder,
         category: object.category.clone(),

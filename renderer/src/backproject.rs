@@ -13,8 +13,8 @@ use pairs::sampling::farthest_point_sampling;
 use pairs::PartId;
 use serde::Deserialize;
 
-use super::cameras;
-use super::RenderError;
+use crate::cameras;
+use crate::RenderError;
 
 /// One object's two states as point clouds with their parts.
 #[derive(Debug, Clone, PartialEq)]

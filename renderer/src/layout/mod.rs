@@ -16,8 +16,8 @@ use image::ExtendedColorType;
 use rayon::prelude::*;
 use serde::Serialize;
 
-use super::{RenderConfig, RenderError, RenderJob};
-use crate::export::output::Staging;
+use crate::{RenderConfig, RenderError, RenderJob};
+use pairs::atomic::Staging;
 
 /// Version of the native layout, in `render.json`.
 pub const RENDER_FORMAT_VERSION: u32 = 2;
@@ -150,7 +150,7 @@ pub fn write_render(
     }
     let record = RenderRecord {
         format_version: RENDER_FORMAT_VERSION,
-        generator_version: crate::generate::GENERATOR_VERSION,
+        generator_version: articulated::GENERATOR_VERSION,
         layout,
         seed,
         config,
@@ -173,7 +173,7 @@ pub(crate) fn each_view(
     config: &RenderConfig,
     job: &RenderJob,
     tick: &(dyn Fn() + Sync),
-    write: impl Fn(usize, usize, &super::ViewImages) -> Result<(), RenderError> + Sync,
+    write: impl Fn(usize, usize, &crate::shade::ViewImages) -> Result<(), RenderError> + Sync,
 ) -> Result<(), RenderError> {
     let views = job.cameras.len();
     (0..job.states.len() * views).into_par_iter().try_for_each(|i| {

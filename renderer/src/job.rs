@@ -1,187 +1,22 @@
-//! Multi-view renders for image-based methods (PARIS, DigitalTwinArt, ArtGS): an object in
-//! S articulation states, each seen by the same V calibrated cameras. Per view: an RGB
-//! image (material, procedural texture and a fixed light, [`appearance`]; never the part
-//! label), depth, part-label and normal images. [`layout`] writes them in our layout or in
-//! the layout a method's loader reads.
-//!
-//! Everything random (the states, the materials) flows from the seed and the object id;
-//! the cameras are fixed by the config, so the same config and seed give identical files.
+//! An object ready to render ([`RenderJob`]): its states, parts, cameras and materials,
+//! drawn from the seed and the object id.
 
-pub mod appearance;
-pub mod backproject;
-pub mod cameras;
-pub mod layout;
-pub mod scene;
-pub mod shade;
-
-use std::path::PathBuf;
-
+use assets::SourcedObject;
 use pairs::math::{Isometry3, Point3, Real};
-use pairs::{Intrinsics, JointKind, PartId};
+use pairs::{JointKind, PartId};
 use rand::Rng as _;
-use serde::{Deserialize, Serialize};
+use serde::Serialize;
 
-use crate::export::objects::ObjectToExport;
-use appearance::{Appearance, Lighting, Material};
+use crate::appearance::{Appearance, Material};
+use crate::cameras;
+use crate::layout;
+use crate::scene::RenderScene;
+use crate::shade::{shade, Shading, ViewImages};
+use crate::{RenderConfig, RenderError};
 use articulated::kinematics::link_poses;
 use articulated::objects::ArticulatedObject;
 use articulated::seed::{rng_for, Stream};
-use cameras::Placement;
 use scanner::camera::Camera;
-use scanner::scene::SceneError;
-use scene::RenderScene;
-use shade::{shade, Shading, ViewImages};
-
-/// Largest image side a render accepts.
-pub const MAX_SIDE: u32 = 8192;
-
-/// How objects are rendered (the `[render]` settings of `generator render`).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(deny_unknown_fields, default)]
-pub struct RenderConfig {
-    /// Image width, pixels.
-    pub width: u32,
-    /// Image height, pixels.
-    pub height: u32,
-    /// Vertical field of view, degrees (square pixels, principal point at the centre).
-    pub fov_y_deg: f64,
-    /// Cameras per state (the same cameras see every state).
-    pub views: u32,
-    /// Where the cameras stand.
-    pub placement: Placement,
-    /// Fraction of the narrower field of view the object's bounding sphere (over all its
-    /// states) fills.
-    pub fill: f64,
-    /// Articulation states per object, at least 2.
-    pub states: u32,
-    /// Background colour, 8-bit RGB.
-    pub background: [u8; 3],
-    /// The lights.
-    pub lighting: Lighting,
-}
-
-impl Default for RenderConfig {
-    fn default() -> Self {
-        Self {
-            width: 640,
-            height: 480,
-            fov_y_deg: 40.0,
-            views: 24,
-            placement: Placement::Sphere,
-            fill: 0.9,
-            states: 2,
-            background: [255, 255, 255],
-            lighting: Lighting::default(),
-        }
-    }
-}
-
-impl RenderConfig {
-    /// Checks every field's range.
-    pub fn validate(&self) -> Result<(), RenderError> {
-        let bad = |field: &str, reason: String| RenderError::Config { field: field.into(), reason };
-        for (field, v) in [("width", self.width), ("height", self.height)] {
-            if v == 0 || v > MAX_SIDE {
-                return Err(bad(field, format!("{v} is not in 1..={MAX_SIDE}")));
-            }
-        }
-        if !(self.fov_y_deg > 1.0 && self.fov_y_deg < 179.0) {
-            return Err(bad("fov_y_deg", format!("{} is not in (1, 179)", self.fov_y_deg)));
-        }
-        if self.views == 0 || self.views > 10_000 {
-            return Err(bad("views", format!("{} is not in 1..=10000", self.views)));
-        }
-        if !(self.fill > 0.0 && self.fill <= 1.0) {
-            return Err(bad("fill", format!("{} is not in (0, 1]", self.fill)));
-        }
-        if !(2..=64).contains(&self.states) {
-            return Err(bad("states", format!("{} is not in 2..=64", self.states)));
-        }
-        let l = &self.lighting;
-        let lights_ok = l.lights.iter().all(|d| {
-            d.intensity.is_finite()
-                && d.intensity >= 0.0
-                && d.direction.iter().all(|x| x.is_finite())
-                && d.direction.iter().any(|&x| x != 0.0)
-        });
-        if !(l.ambient.is_finite() && l.ambient >= 0.0 && lights_ok) {
-            return Err(bad(
-                "lighting",
-                "ambient and intensities must be finite and >= 0, directions finite and non-zero"
-                    .into(),
-            ));
-        }
-        Ok(())
-    }
-
-    /// The cameras' intrinsics.
-    pub fn intrinsics(&self) -> Intrinsics {
-        Intrinsics::with_fov(self.width, self.height, (self.fov_y_deg as Real).to_radians())
-    }
-}
-
-/// Why a render failed.
-#[derive(Debug, thiserror::Error)]
-#[non_exhaustive]
-pub enum RenderError {
-    /// A setting is out of range.
-    #[error("render setting {field}: {reason}")]
-    Config {
-        /// The field.
-        field: String,
-        /// What is wrong.
-        reason: String,
-    },
-    /// A camera file or camera is unusable.
-    #[error("cameras ({what}): {reason}")]
-    Cameras {
-        /// The file and camera.
-        what: String,
-        /// What is wrong.
-        reason: String,
-    },
-    /// An object cannot be ray cast.
-    #[error("object {object}: {source}")]
-    Scene {
-        /// The object's folder name.
-        object: String,
-        /// Why.
-        source: SceneError,
-    },
-    /// An object cannot be built.
-    #[error(transparent)]
-    Object(#[from] crate::generate::GenerateError),
-    /// A file cannot be read or written (the reason is in the message, not a source, so
-    /// that an error chain does not print it twice).
-    #[error("{path}: {error}")]
-    Io {
-        /// The file.
-        path: PathBuf,
-        /// Why.
-        error: std::io::Error,
-    },
-    /// An image cannot be encoded or decoded.
-    #[error("image {path}: {error}")]
-    Image {
-        /// The file.
-        path: PathBuf,
-        /// Why.
-        error: image::ImageError,
-    },
-    /// The output folder cannot be written.
-    #[error(transparent)]
-    Output(#[from] crate::export::output::OutputError),
-    /// A layout cannot hold this object.
-    #[error("object {object} cannot be written in the {layout} layout: {reason}")]
-    Layout {
-        /// The object's folder name.
-        object: String,
-        /// The layout.
-        layout: &'static str,
-        /// Why.
-        reason: String,
-    },
-}
 
 /// A joint in every rendered state.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -212,7 +47,7 @@ pub struct JointStates {
 /// An object ready to render: its states, parts, cameras and materials.
 pub struct RenderJob {
     /// The object and where it came from.
-    pub object: ObjectToExport,
+    pub object: SourcedObject,
     /// Folder name (`<object id, 6 digits>_<category>`).
     pub name: String,
     /// Joint values of each state.
@@ -242,11 +77,11 @@ impl RenderJob {
     pub fn new(
         config: &RenderConfig,
         seed: u64,
-        object: ObjectToExport,
+        object: SourcedObject,
         cameras: Option<&[Camera]>,
         layout: layout::Layout,
     ) -> Result<Self, RenderError> {
-        let name = crate::export::objects::folder_name(object.object_id, &object.object.category);
+        let name = object.folder_name();
         let id = u64::from(object.object_id);
         let mut states = draw_states(
             &object.object,
@@ -428,10 +263,6 @@ pub fn posed_mesh(
 
 /// Bounding box (lowest and highest corner) of an object over its posed states.
 pub fn bounds(scenes: &[RenderScene]) -> (Point3, Point3) {
-    scenes
-        .iter()
-        .flat_map(|s| s.corners())
-        .fold((Point3::from([Real::MAX; 3]), Point3::from([Real::MIN; 3])), |(lo, hi), p| {
-            (lo.inf(&p), hi.sup(&p))
-        })
+    pairs::math::bounds(scenes.iter().flat_map(|s| s.corners()))
+        .unwrap_or((Point3::origin(), Point3::origin()))
 }

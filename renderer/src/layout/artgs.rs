@@ -27,7 +27,7 @@ use super::gt::{part_joints, trans_json, write_meshes};
 use super::native::depth_units;
 use super::paris::{write_rgba, STATES};
 use super::{each_view, u16_bytes, write_json, write_png};
-use crate::multiview::{RenderConfig, RenderError, RenderJob};
+use crate::{RenderConfig, RenderError, RenderJob};
 
 /// ArtGS's dataset and subset names for our renders.
 pub const DATASET: (&str, &str) = ("part_induction", "render");

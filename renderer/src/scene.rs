@@ -35,7 +35,7 @@ impl RenderScene {
     pub fn new(object: &ArticulatedObject, poses: &[Isometry3]) -> Result<Self, SceneError> {
         let mut triangles = Vec::new();
         let mut link_of_triangle = Vec::new();
-        let (mut min, mut max) = (Point3::from([Real::MAX; 3]), Point3::from([Real::MIN; 3]));
+        let mut placed_all = Vec::new();
         for (link, (l, pose)) in object.links.iter().zip(poses).enumerate() {
             let placed: Vec<Point3> = l.mesh.vertices.iter().map(|v| pose * v).collect();
             for p in &placed {
@@ -45,14 +45,16 @@ impl RenderScene {
                         l.name
                     )));
                 }
-                (min, max) = (min.inf(p), max.sup(p));
             }
             for t in &l.mesh.triangles {
                 let [a, b, c] = t.map(|i| glam(&placed[i as usize]));
                 triangles.push(Triangle { v0: a, v1: b, v2: c });
                 link_of_triangle.push(link as u32);
             }
+            placed_all.extend(placed);
         }
+        let (min, max) =
+            pairs::math::bounds(&placed_all).unwrap_or((Point3::origin(), Point3::origin()));
         if triangles.is_empty() {
             return Err(SceneError::Mesh("the object has no triangles".into()));
         }

@@ -20,8 +20,8 @@ use std::path::Path;
 
 use pairs::Pair;
 
-use super::{mat, FormatError};
-use crate::export::output::{write_file, OutputError};
+use crate::{mat, FormatError};
+use pairs::atomic::{write_file, OutputError};
 
 /// What the pairs' arrays are stacked into, row-major (pair, point, coordinate).
 #[derive(Debug, Default)]
