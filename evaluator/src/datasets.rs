@@ -40,6 +40,12 @@ impl DatasetSpec {
     pub fn dir(&self, root: &Path) -> PathBuf {
         self.path.clone().unwrap_or_else(|| root.join(&self.name))
     }
+
+    /// Whether it is a render folder given with `--dataset NAME=PATH` (made by `generator
+    /// render`, scored on its joints) rather than a dataset of pairs.
+    pub fn is_user_render(&self, root: &Path) -> bool {
+        self.config.is_none() && pairs::renders::is_render(&self.dir(root))
+    }
 }
 
 /// Parses `NAME=PATH` (the `--dataset` flag).

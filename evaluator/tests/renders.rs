@@ -44,7 +44,7 @@ fn the_oracle_finds_the_true_joints_and_a_failing_row_none() {
     registry.oracle();
     registry.method(Arc::new(Fails), Board::Both, "fails v1");
     let entries: Vec<_> = registry.entries().iter().collect();
-    let joints = render_joints(&entries, &root, &|_| {}).expect("joints");
+    let joints = render_joints(&entries, "render", &root, &|_| {}).expect("joints");
     let truth = pairs::renders::read_truth(&root).expect("truth");
     let rows: Vec<RenderJointRow> =
         joints.iter().flat_map(|(row, p)| score_joints(&truth, p, "render", row)).collect();
@@ -73,4 +73,51 @@ fn the_oracle_finds_the_true_joints_and_a_failing_row_none() {
     upsert(&reports, &rows).expect("board");
     let text = section(&reports).expect("a section");
     assert!(text.contains("| render | `gt` |") && text.contains("| render | `fails` |"), "{text}");
+}
+
+#[test]
+fn a_render_folder_given_with_dataset_is_scored_on_its_joints() {
+    use evaluator::boards::render_joints::RENDER_JOINTS_FILE;
+    use evaluator::commands::pipeline::{evaluate, NoProgress, Options};
+    use evaluator::datasets::DatasetSpec;
+
+    let dir = tempfile::tempdir().expect("tmp");
+    let render = dir.path().join("mine");
+    let config =
+        RenderConfig { width: 96, height: 72, views: 4, states: 2, ..RenderConfig::default() };
+    let objects = GeneratorConfig { objects: 2, ..GeneratorConfig::default() };
+    let jobs = built_in_objects(&objects)
+        .expect("objects")
+        .into_iter()
+        .map(|o| RenderJob::new(&config, 0, o, None, Layout::Native));
+    write_render(&config, 0, jobs, Layout::Native, &render, false, &|_| {}).expect("render");
+    let mut registry = Registry::new();
+    registry.oracle();
+    let reports = dir.path().join("reports");
+    let options = Options {
+        datasets: vec!["myrender".into()],
+        methods: Vec::new(),
+        limit: None,
+        datasets_root: dir.path().join("datasets"),
+        reports: reports.clone(),
+        force: false,
+        gallery_pairs: 0,
+        validation: Vec::new(),
+    };
+    let spec = DatasetSpec::user("myrender", &render);
+    evaluate(&registry, &[spec], &options, &NoProgress).expect("the render is scored");
+    let board = std::fs::read_to_string(reports.join(RENDER_JOINTS_FILE)).expect("joints board");
+    let rows: Vec<Vec<&str>> = board
+        .lines()
+        .map(|l| l.split(',').collect::<Vec<_>>())
+        .filter(|r| r[0] == "myrender")
+        .collect();
+    assert_eq!(rows.len(), Variant::ALL.len(), "{board}");
+    for row in &rows {
+        // The oracle matches every true joint of the two objects.
+        assert_eq!(row[1], "gt", "{board}");
+        assert!(row[3].parse::<u32>().expect("joints") > 0 && row[3] == row[4], "{board}");
+    }
+    // The render is not mistaken for a dataset of pairs, and no default render was made.
+    assert!(!dir.path().join("datasets").join("render").exists());
 }

@@ -26,19 +26,19 @@ fn norm(c: &mut Criterion) {
     let gamma: Vec<f32> = (0..channels).map(|i| 0.5 + i as f32 / channels as f32).collect();
     let beta: Vec<f32> = (0..channels).map(|i| i as f32 / channels as f32 - 0.5).collect();
     let bias: Vec<f32> = beta.iter().map(|b| b * 0.1).collect();
-    let params = model::network::norm::Channels { bias: &bias, gamma: &gamma, beta: &beta };
-    let (out, z) = model::network::norm::forward(&x, &weight, &params, true);
+    let params = model::network::fused::Channels { bias: &bias, gamma: &gamma, beta: &beta };
+    let (out, z) = model::network::fused::forward(&x, &weight, &params, true);
     let grad: Vec<f32> = out.iter().map(|v| v * 0.5 - 0.1).collect();
     let mut group = c.benchmark_group("norm");
     group.sample_size(20);
     group.bench_function("forward_65536x64", |b| {
-        b.iter(|| model::network::norm::forward(&x, &weight, &params, true))
+        b.iter(|| model::network::fused::forward(&x, &weight, &params, true))
     });
     group.bench_function("backward_65536x64", |b| {
         let mut dz = grad.clone();
         b.iter(|| {
             dz.copy_from_slice(&grad);
-            model::network::norm::backward(&x, &weight, &z, &params, &mut dz, true)
+            model::network::fused::backward(&x, &weight, &z, &params, &mut dz, true)
         })
     });
     group.finish();

@@ -4,6 +4,9 @@
 
 use crate::dataset::{PairReader, SetReader};
 use crate::predictions::PredictionReader;
+use crate::renders::{
+    parse_predictions, parse_truth, ObjectTruth, RenderRecord, RenderTruth, WorldFrame,
+};
 
 /// Reads `data` as a `pairs.mcap` stream; returns the pairs read before the end or the
 /// first error.
@@ -25,4 +28,37 @@ pub fn read_predictions(data: &[u8]) -> usize {
         return 0;
     }
     reader.map_while(Result::ok).count()
+}
+
+/// Reads `data` as a render folder's records: `render.json` (any settings) and
+/// `ground_truth.json` (with its world frames and joints checked); returns the objects the
+/// two list (0 for each that is refused).
+pub fn read_render_records(data: &[u8]) -> usize {
+    let Ok(text) = std::str::from_utf8(data) else { return 0 };
+    let path = std::path::Path::new("fuzz input");
+    let record = serde_json::from_str::<RenderRecord<serde_json::Value>>(text)
+        .map_or(0, |r| r.objects.len());
+    let truth = parse_truth(text, path).map_or(0, |t| t.objects.len());
+    record + truth
+}
+
+/// Reads `data` as a joints-only prediction file for a render of two objects
+/// (`000000_laptop`, `000001_cabinet`); returns the objects it lists (0 when refused).
+pub fn read_joint_predictions(data: &[u8]) -> usize {
+    let Ok(text) = std::str::from_utf8(data) else { return 0 };
+    let object = |object_id: u32, category: &str| ObjectTruth {
+        folder: format!("{object_id:06}_{category}"),
+        object_id,
+        category: category.into(),
+        world: WorldFrame::identity(),
+        diagonal: 1.0,
+        joints: Vec::new(),
+    };
+    let truth = RenderTruth {
+        layout: "native".into(),
+        seed: 0,
+        objects: vec![object(0, "laptop"), object(1, "cabinet")],
+    };
+    parse_predictions(text, std::path::Path::new("fuzz input"), &truth)
+        .map_or(0, |p| p.objects.len())
 }

@@ -9,6 +9,7 @@ use std::path::{Path, PathBuf};
 use serde::{Deserialize, Serialize};
 
 use crate::joints::JointKind;
+use crate::math::{Matrix3, Point3, Real, Vector3};
 
 /// The render record at a render folder's root.
 pub const RENDER_FILE: &str = "render.json";
@@ -32,6 +33,34 @@ pub struct WorldFrame {
     pub centre: [f64; 3],
     /// Whether the world is Z-up (`C = [[1,0,0],[0,0,-1],[0,1,0]]`).
     pub z_up: bool,
+}
+
+impl WorldFrame {
+    /// Our object frame, unchanged.
+    pub fn identity() -> Self {
+        Self { scale: 1.0, centre: [0.0; 3], z_up: false }
+    }
+
+    /// The rotation `C`.
+    pub fn axes(&self) -> Matrix3 {
+        if self.z_up {
+            Matrix3::new(1.0, 0.0, 0.0, 0.0, 0.0, -1.0, 0.0, 1.0, 0.0)
+        } else {
+            Matrix3::identity()
+        }
+    }
+
+    /// A point of the object frame in the world, in [`Real`] arithmetic (the frame's
+    /// fields hold `Real` values widened, so this is the renderer's own arithmetic).
+    pub fn point(&self, p: &Point3) -> Point3 {
+        let centre = Point3::from(self.centre.map(|c| c as Real));
+        Point3::from(self.axes() * (p - centre) * self.scale as Real)
+    }
+
+    /// A direction of the object frame in the world.
+    pub fn direction(&self, d: &Vector3) -> Vector3 {
+        self.axes() * d
+    }
 }
 
 /// One joint: its type, axis direction, a point of its axis, and its state change from
@@ -123,6 +152,34 @@ pub struct JointPredictions {
     pub objects: BTreeMap<String, Vec<RenderJoint>>,
 }
 
+/// The record at the root of every render folder (`render.json`), whatever its layout:
+/// what wrote it and with which settings, and its object folders. `C` is the render
+/// settings (the renderer's `RenderConfig`; `serde_json::Value` for a reader that does not
+/// know them), written in their own field order.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct RenderRecord<C> {
+    /// Version of the render folder format (the renderer's `RENDER_FORMAT_VERSION`).
+    pub format_version: u32,
+    /// The generator that wrote it.
+    pub generator_version: String,
+    /// The layout's name (`native`, `paris`, `dta`, `artgs`).
+    pub layout: String,
+    /// The seed the states and materials were drawn from.
+    pub seed: u64,
+    /// The render settings.
+    pub config: C,
+    /// The object folders, relative to the render folder, in object order.
+    pub objects: Vec<String>,
+}
+
+/// Reads a render folder's `render.json`.
+pub fn read_record<C: serde::de::DeserializeOwned>(
+    dir: &Path,
+) -> Result<RenderRecord<C>, RenderFileError> {
+    let path = dir.join(RENDER_FILE);
+    parse_json(&read_text(&path)?, &path)
+}
+
 /// Why a render's ground truth or a joints file cannot be used.
 #[derive(Debug, thiserror::Error)]
 #[non_exhaustive]
@@ -157,10 +214,16 @@ pub enum RenderFileError {
     },
 }
 
-fn read_json<T: serde::de::DeserializeOwned>(path: &Path) -> Result<T, RenderFileError> {
-    let text = std::fs::read_to_string(path)
-        .map_err(|source| RenderFileError::Io { path: path.into(), source })?;
-    serde_json::from_str(&text)
+fn read_text(path: &Path) -> Result<String, RenderFileError> {
+    std::fs::read_to_string(path)
+        .map_err(|source| RenderFileError::Io { path: path.into(), source })
+}
+
+fn parse_json<T: serde::de::DeserializeOwned>(
+    text: &str,
+    path: &Path,
+) -> Result<T, RenderFileError> {
+    serde_json::from_str(text)
         .map_err(|e| RenderFileError::Format { path: path.into(), reason: e.to_string() })
 }
 
@@ -172,7 +235,13 @@ pub fn is_render(dir: &Path) -> bool {
 /// Reads a render's ground truth.
 pub fn read_truth(dir: &Path) -> Result<RenderTruth, RenderFileError> {
     let path = dir.join(GROUND_TRUTH_FILE);
-    let truth: RenderTruth = read_json(&path)?;
+    parse_truth(&read_text(&path)?, &path)
+}
+
+/// [`read_truth`] on the text of `path`.
+pub fn parse_truth(text: &str, path: &Path) -> Result<RenderTruth, RenderFileError> {
+    let path = path.to_path_buf();
+    let truth: RenderTruth = parse_json(text, &path)?;
     for object in &truth.objects {
         if object.joints.len() > MAX_JOINTS {
             return Err(RenderFileError::Format {
@@ -197,7 +266,16 @@ pub fn read_predictions(
     path: &Path,
     truth: &RenderTruth,
 ) -> Result<JointPredictions, RenderFileError> {
-    let file: JointPredictions = read_json(path)?;
+    parse_predictions(&read_text(path)?, path, truth)
+}
+
+/// [`read_predictions`] on the text of `path`.
+pub fn parse_predictions(
+    text: &str,
+    path: &Path,
+    truth: &RenderTruth,
+) -> Result<JointPredictions, RenderFileError> {
+    let file: JointPredictions = parse_json(text, path)?;
     let bad = |reason: String| RenderFileError::Format { path: path.into(), reason };
     if file.format != JOINTS_FORMAT || file.version != JOINTS_VERSION {
         return Err(bad(format!(

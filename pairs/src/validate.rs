@@ -2,8 +2,8 @@
 
 use crate::error::PairError;
 use crate::ground_truth::GroundTruth;
+use crate::input::{PairInput, Provenance};
 use crate::math::{Matrix3, Point3, Real};
-use crate::pair::{PairInput, Provenance};
 use crate::parts::{PartId, MAX_PARTS};
 use crate::scan::Scans;
 

@@ -103,3 +103,13 @@ fn write_seeds() {
         std::fs::write(dir.join("truncated.mcap"), &bytes[..bytes.len() / 2]).expect("written");
     }
 }
+
+#[test]
+fn render_record_inputs_are_read_or_refused() {
+    replay("render_records", pairs::fuzz::read_render_records);
+}
+
+#[test]
+fn joint_prediction_inputs_are_read_or_refused() {
+    replay("joint_predictions", pairs::fuzz::read_joint_predictions);
+}

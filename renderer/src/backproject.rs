@@ -8,7 +8,7 @@ use std::path::Path;
 
 use nalgebra::Matrix4;
 use pairs::math::{Isometry3, Point3, Real};
-use pairs::renders::RENDER_FILE;
+use pairs::renders::{RenderRecord, RENDER_FILE};
 use pairs::sampling::farthest_point_sampling;
 use pairs::PartId;
 use serde::Deserialize;
@@ -34,12 +34,6 @@ pub struct RenderPair {
 }
 
 #[derive(Deserialize)]
-struct RenderRecord {
-    layout: String,
-    objects: Vec<String>,
-}
-
-#[derive(Deserialize)]
 struct ObjectRecord {
     depth_scale: Real,
     part_motions: Vec<Vec<[[Real; 4]; 4]>>,
@@ -60,7 +54,7 @@ fn image_error(path: &Path, source: image::ImageError) -> RenderError {
 
 /// Every object of the native render in `dir` as a pair of `points` points per state.
 pub fn render_pairs(dir: &Path, points: usize) -> Result<Vec<RenderPair>, RenderError> {
-    let record: RenderRecord = read(&dir.join(RENDER_FILE))?;
+    let record: RenderRecord<serde_json::Value> = read(&dir.join(RENDER_FILE))?;
     if record.layout != "native" {
         return Err(RenderError::Layout {
             object: dir.display().to_string(),

@@ -11,6 +11,7 @@
 #![deny(missing_docs)]
 
 pub mod collision;
+pub mod fit;
 pub mod inertia;
 pub mod mjcf;
 pub mod objects;

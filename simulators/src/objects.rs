@@ -24,7 +24,7 @@ use std::path::Path;
 use rayon::prelude::*;
 use serde::Serialize;
 
-use crate::collision::Fit;
+use crate::fit::Fit;
 use crate::inertia::MassSource;
 use crate::mjcf::mjcf_text;
 use crate::physics::{object_physics, summary, CollisionSummary, PhysicsOptions};

@@ -11,7 +11,10 @@ use image::{imageops, Rgb, RgbImage};
 use pairs::metrics::matched_iou;
 use pairs::Pair;
 
+use crate::boards::leaderboard::Scored;
+use crate::datasets::LoadedDataset;
 use crate::error::EvalError;
+use crate::rows::registry::Board;
 
 /// Splat radius for clouds of a few hundred points at the gallery's panel size.
 const SPLAT: i32 = 3;
@@ -75,6 +78,31 @@ pub fn write_picture(
         pair: pair.id().to_owned(),
         panels: panels.into_iter().map(|(name, _)| name).collect(),
     })
+}
+
+/// One picture per gallery pair and dataset, with a panel per segmentation row.
+pub fn write_gallery(
+    reports: &Path,
+    gallery_pairs: usize,
+    loaded: &[&LoadedDataset],
+    scored: &[Scored],
+) -> Result<Vec<GalleryPicture>, EvalError> {
+    let dir = reports.join("gallery").join("segmentation");
+    let mut pictures = Vec::new();
+    for dataset in loaded {
+        for pair in dataset.pairs.iter().take(gallery_pairs) {
+            let rows: Vec<(String, Vec<u32>)> = scored
+                .iter()
+                .filter(|s| s.dataset == dataset.name && s.entry.board != Board::Flow)
+                .filter_map(|s| {
+                    let segments = s.result.meta.gallery.get(pair.id())?;
+                    Some((s.entry.name.clone(), segments.clone()))
+                })
+                .collect();
+            pictures.push(write_picture(&dir, &dataset.name, pair, &rows)?);
+        }
+    }
+    Ok(pictures)
 }
 
 #[cfg(test)]

@@ -6,7 +6,8 @@ use std::path::{Path, PathBuf};
 
 use pairs::predictions::{PredictionHeader, PredictionRecord, PredictionWriter};
 
-use crate::commands::pipeline::{evaluate, predict_row, Options, Progress, Summary};
+use crate::commands::pipeline::{evaluate, Options, Progress, Summary};
+use crate::commands::predict::predict_row;
 use crate::datasets::{remember_datasets, validation_datasets, DatasetSpec};
 use crate::error::EvalError;
 use crate::rows::external::{

@@ -8,10 +8,7 @@
 
 use std::path::PathBuf;
 
-use pairs::Prediction;
-use rayon::prelude::*;
-
-use crate::boards::gallery::{write_picture, GalleryPicture};
+use crate::boards::gallery::write_gallery;
 use crate::boards::iterations::{
     iteration_table, write_iterations, IterationRow, JointRow, ITERATIVE_ROW,
 };
@@ -25,11 +22,9 @@ use crate::datasets::{
     LoadedSets,
 };
 use crate::error::EvalError;
-use crate::rows::registry::{Board, Entry, Registry, Runner};
+use crate::rows::registry::{Entry, Registry, Runner};
 use crate::running::renders::{ensure_render, render_joints, RENDER_DATASET};
-use crate::running::run::{
-    cached_run, predict_pair, prepare, run_entry, FlowCache, RunOptions, RunResult,
-};
+use crate::running::run::{cached_run, run_entry, FlowCache, RunOptions, RunResult};
 use crate::running::sets::{cached_set_run, run_set_entry, runs_on_sets, SetRunResult};
 use crate::tuning::{cached_sweep, sweep_key, tune, Sweep};
 
@@ -144,6 +139,9 @@ pub fn evaluate(
     for spec in specs {
         let chosen = selected_specs.iter().any(|s| s.name == spec.name);
         let dir = spec.dir(&options.datasets_root);
+        if spec.is_user_render(&options.datasets_root) {
+            continue;
+        }
         if chosen {
             ensure_dataset(
                 spec,
@@ -259,20 +257,32 @@ pub fn evaluate(
     let sweeps: Vec<Sweep> =
         sweeps.into_iter().filter(|s| scored.iter().any(|r| r.entry.name == s.row)).collect();
     // The render benchmark: every selected row that runs on a pair's input, on the joints of
-    // the default render's back-projected clouds (not with --limit).
-    if render_chosen && options.limit.is_none() {
-        let dir = ensure_render(&options.datasets_root, &|m| progress.notice(m))?;
+    // the default render's back-projected clouds, and of each render folder given with
+    // `--dataset NAME=PATH` (not with --limit).
+    if options.limit.is_none() {
+        let mut renders = Vec::new();
+        if render_chosen {
+            let dir = ensure_render(&options.datasets_root, &|m| progress.notice(m))?;
+            renders.push((RENDER_DATASET.to_owned(), dir));
+        }
+        for spec in &selected_specs {
+            if spec.is_user_render(&options.datasets_root) {
+                renders.push((spec.name.clone(), spec.dir(&options.datasets_root)));
+            }
+        }
         let chosen: Vec<&Entry> =
             entries.iter().filter(|e| selected.iter().any(|s| s.name == e.name)).collect();
-        let joints = render_joints(&chosen, &dir, &|row| {
-            progress.notice(&format!("{row} on {RENDER_DATASET}: joints"))
-        })?;
-        let truth = pairs::renders::read_truth(&dir)?;
-        let rows: Vec<_> = joints
-            .iter()
-            .flat_map(|(row, predicted)| score_joints(&truth, predicted, RENDER_DATASET, row))
-            .collect();
-        upsert_render_joints(&reports, &rows)?;
+        for (name, dir) in renders {
+            let joints = render_joints(&chosen, &name, &dir, &|row| {
+                progress.notice(&format!("{row} on {name}: joints"))
+            })?;
+            let truth = pairs::renders::read_truth(&dir)?;
+            let rows: Vec<_> = joints
+                .iter()
+                .flat_map(|(row, predicted)| score_joints(&truth, predicted, &name, row))
+                .collect();
+            upsert_render_joints(&reports, &rows)?;
+        }
     }
     write_report(&reports, &boards, &gallery, &sweeps, &set_board)?;
     let (mut iterations, mut iteration_joints) = (Vec::new(), Vec::new());
@@ -310,71 +320,11 @@ fn runs_now(entry: &Entry, chosen: bool, selected: &[Entry], options: &Options) 
         && (!external || options.methods.contains(&entry.name))
 }
 
-/// Every prediction of row `row` on the dataset `options.datasets[0]` (made when missing),
-/// in the dataset's pair order, as the leaderboards would score them: a tuned row with its
-/// chosen parameters (tuned now unless its sweep is cached), a segmenter on its flow
-/// source's flow. A pair the row fails on has the reason instead.
-pub fn predict_row(
-    registry: &Registry,
-    specs: &[DatasetSpec],
-    options: &Options,
-    row: &str,
-    progress: &dyn Progress,
-) -> Result<RowPredictions, EvalError> {
-    let name = options.datasets.first().cloned().unwrap_or_default();
-    let spec = specs.iter().find(|s| s.name == name).ok_or_else(|| EvalError::Unknown {
-        what: "dataset",
-        name: name.clone(),
-        known: specs.iter().map(|s| s.name.as_str()).collect::<Vec<_>>().join(", "),
-    })?;
-    ensure_dataset(spec, &options.datasets_root, &|m| progress.notice(m), |done, total| {
-        progress.generating(&spec.name, done, total)
-    })?;
-    let dir = spec.dir(&options.datasets_root);
-    // On a set dataset the row predicts the pairs (view 0, view k) of every set, the records
-    // a set prediction file holds (docs/FORMAT.md).
-    let dataset = if holds_sets(spec, &dir) {
-        load_set_dataset(&spec.name, &dir, options.limit)?.pairs
-    } else {
-        load_dataset(&spec.name, &dir, options.limit)?
-    };
-    let selected = registry.select(&[row.to_owned()])?;
-    let flows = FlowCache::default();
-    let (entries, _) =
-        resolve_tuning(registry.entries(), &selected, true, options, &flows, progress)?;
-    let entry = entries.into_iter().find(|e| e.name == row).expect("selected above");
-    let (source_flows, runner) = prepare(&entry, &dataset, &flows)?;
-    let runner = &runner;
-    progress.start(row, &dataset.name, dataset.pairs.len() as u64);
-    let predictions = dataset
-        .pairs
-        .par_iter()
-        .enumerate()
-        .map(|(i, pair)| {
-            let prediction = predict_pair(runner, pair, source_flows.as_ref().map(|f| &f[i]));
-            progress.tick();
-            (pair.id().to_owned(), prediction)
-        })
-        .collect();
-    progress.finish(row, &dataset.name, false);
-    Ok(RowPredictions { fingerprint: entry.fingerprint_for(&dataset.name), dataset, predictions })
-}
-
-/// What [`predict_row`] returns.
-pub struct RowPredictions {
-    /// The row's fingerprint (its code, parameters and weights).
-    pub fingerprint: String,
-    /// The dataset predicted.
-    pub dataset: LoadedDataset,
-    /// Each pair's id and prediction (or why it has none), in the dataset's order.
-    pub predictions: Vec<(String, Result<Prediction, String>)>,
-}
-
 /// The rows with every tuned row's chosen parameters in place: a selected tuned row is tuned
 /// (or its cached sweep reused) on the validation sets, generated when missing; an unselected
 /// one takes its cached sweep when there is one, else it keeps an untuned fingerprint that no
 /// cached run matches (so it stays out of the tables). The sweeps used are returned beside.
-fn resolve_tuning(
+pub(crate) fn resolve_tuning(
     entries: &[Entry],
     selected: &[Entry],
     any_chosen: bool,
@@ -443,29 +393,4 @@ fn resolve_tuning(
 /// Candidates of a grid before widening.
 fn grid_size(grid: &crate::rows::grid::Grid) -> u64 {
     grid.axes.iter().map(|a| a.values.len() as u64).product()
-}
-
-/// One picture per gallery pair and dataset, with a panel per segmentation row.
-fn write_gallery(
-    reports: &std::path::Path,
-    gallery_pairs: usize,
-    loaded: &[&LoadedDataset],
-    scored: &[Scored],
-) -> Result<Vec<GalleryPicture>, EvalError> {
-    let dir = reports.join("gallery").join("segmentation");
-    let mut pictures = Vec::new();
-    for dataset in loaded {
-        for pair in dataset.pairs.iter().take(gallery_pairs) {
-            let rows: Vec<(String, Vec<u32>)> = scored
-                .iter()
-                .filter(|s| s.dataset == dataset.name && s.entry.board != Board::Flow)
-                .filter_map(|s| {
-                    let segments = s.result.meta.gallery.get(pair.id())?;
-                    Some((s.entry.name.clone(), segments.clone()))
-                })
-                .collect();
-            pictures.push(write_picture(&dir, &dataset.name, pair, &rows)?);
-        }
-    }
-    Ok(pictures)
 }

@@ -3,7 +3,7 @@
 
 use std::sync::Arc;
 
-use super::registry::Runner;
+use crate::rows::runner::Runner;
 
 /// One swept parameter: its name, its starting values (ascending) and how it widens.
 #[derive(Debug, Clone, PartialEq)]

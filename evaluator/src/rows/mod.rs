@@ -5,4 +5,5 @@ pub mod external;
 pub mod grid;
 pub mod reference;
 pub mod registry;
+pub mod runner;
 pub mod standard;

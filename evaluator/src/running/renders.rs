@@ -15,7 +15,7 @@ use generator::config::GeneratorConfig;
 use generator::objects::built_in_objects;
 use pairs::joint_estimate::{estimate_joint, estimate_joints, JointParams};
 use pairs::math::Vector3;
-use pairs::renders::{RenderJoint, GROUND_TRUTH_FILE, RENDER_FILE};
+use pairs::renders::{read_record, RenderJoint, GROUND_TRUTH_FILE, RENDER_FILE};
 use pairs::{Cloud, JointKind, PairInput, PairKind, Prediction, Similarity};
 use rayon::prelude::*;
 use renderer::backproject::{render_pairs, RenderPair};
@@ -45,15 +45,14 @@ pub fn default_render_config() -> RenderConfig {
 pub fn ensure_render(root: &Path, notice: &dyn Fn(&str)) -> Result<PathBuf, EvalError> {
     let dir = root.join(RENDER_DATASET);
     let config = default_render_config();
-    let current = std::fs::read_to_string(dir.join(RENDER_FILE))
-        .ok()
-        .and_then(|text| serde_json::from_str::<serde_json::Value>(&text).ok())
-        .map(|r| {
-            r["format_version"] == RENDER_FORMAT_VERSION
-                && r["layout"] == "native"
-                && r["seed"] == 0
-                && serde_json::to_value(&config).is_ok_and(|c| r["config"] == c)
-        });
+    let current = dir.join(RENDER_FILE).exists().then(|| {
+        read_record::<RenderConfig>(&dir).is_ok_and(|r| {
+            r.format_version == RENDER_FORMAT_VERSION
+                && r.layout == Layout::Native.as_str()
+                && r.seed == 0
+                && r.config == config
+        })
+    });
     match current {
         Some(true) if dir.join(GROUND_TRUTH_FILE).exists() => return Ok(dir),
         Some(_) => notice(&format!(
@@ -97,13 +96,15 @@ struct Prepared {
 /// (objects it failed on are left out).
 pub type RowJoints = (String, BTreeMap<String, Vec<RenderJoint>>);
 
-/// Every row of `entries` that runs on renders, on the render in `dir`: its joints.
+/// Every row of `entries` that runs on renders, on the render `name` in `dir` (a native
+/// render): its joints.
 pub fn render_joints(
     entries: &[&Entry],
+    name: &str,
     dir: &Path,
     progress: &dyn Fn(&str),
 ) -> Result<Vec<RowJoints>, EvalError> {
-    let generate = |message: String| EvalError::Render { name: RENDER_DATASET.into(), message };
+    let generate = |message: String| EvalError::Render { name: name.into(), message };
     let prepared: Vec<Prepared> = render_pairs(dir, RENDER_POINTS)
         .map_err(|e| generate(e.to_string()))?
         .into_iter()

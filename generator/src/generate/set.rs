@@ -13,13 +13,14 @@ use rand::seq::SliceRandom;
 
 use crate::config::{GeneratorConfig, SetsConfig};
 use crate::label::{merge_links, merge_links_over, Parts};
-use crate::protocol::{draw_state, global_pose};
+use crate::protocol::global_pose;
 use articulated::kinematics::link_poses;
 use articulated::objects::ArticulatedObject;
 use articulated::sampling::SurfaceSampler;
 use articulated::seed::{rng_for, Stream};
 use scanner::images;
 
+use super::object::set_states;
 use super::pair::{object_size, observe_side, presence, Observation};
 use super::{build_object, GenerateError};
 use articulated::GENERATOR_VERSION;
@@ -102,34 +103,6 @@ pub fn sets_of_object(
         }
     }
     Ok(made)
-}
-
-/// Extra draws past the object's `states_per_object` states allowed to find K distinct
-/// ones.
-const EXTRA_STATES: usize = 64;
-
-/// The states a set draws its views from: the object's states (what pairs'
-/// `articulation_p` / `_q` index), continued with the same stream's next draws while fewer
-/// than `views` of them are distinct (a simple object may sit at rest in most of its
-/// states), so that state `i` is the same state for pairs and sets.
-pub fn set_states(
-    config: &GeneratorConfig,
-    object: &ArticulatedObject,
-    index: u32,
-    views: usize,
-) -> Vec<Vec<Real>> {
-    let mut rng = rng_for(config.seed, u64::from(index), Stream::States);
-    let mut states: Vec<Vec<Real>> = Vec::new();
-    let distinct = |states: &[Vec<Real>]| {
-        states.iter().enumerate().filter(|(i, s)| !states[..*i].contains(s)).count()
-    };
-    while states.len() < config.states_per_object as usize
-        || (distinct(&states) < views
-            && states.len() < config.states_per_object as usize + EXTRA_STATES)
-    {
-        states.push(draw_state(object, config.rest_probability, &mut rng));
-    }
-    states
 }
 
 /// One object of a set dataset and what every set of it needs.

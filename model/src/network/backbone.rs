@@ -6,8 +6,9 @@
 use burn::prelude::*;
 use serde::{Deserialize, Serialize};
 
+use crate::network::mlp::{Head, SharedMlp};
 use crate::network::pointnet::{
-    FeaturePropagation, GlobalAbstraction, Head, SetAbstraction, SetAbstractionConfig, SharedMlp,
+    FeaturePropagation, GlobalAbstraction, SetAbstraction, SetAbstractionConfig,
 };
 use crate::network::sampling::SamplingError;
 

@@ -9,7 +9,8 @@ use burn::tensor::activation;
 use crate::network::backbone::Backbone;
 use crate::network::config::NetworkConfig;
 use crate::network::input::{gather_points, PairTensors};
-use crate::network::pointnet::{linear, relu_layer, Head, SharedMlp};
+use crate::network::mlp::{relu_layer, Head, SharedMlp};
+use crate::network::norm::linear;
 use crate::network::pool::max_pool;
 use crate::network::sampling::SamplingError;
 

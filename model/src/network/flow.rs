@@ -8,7 +8,8 @@ use burn::prelude::*;
 use crate::network::backbone::Backbone;
 use crate::network::config::NetworkConfig;
 use crate::network::input::PairTensors;
-use crate::network::pointnet::{interpolate_features, Head, SharedMlp};
+use crate::network::mlp::{Head, SharedMlp};
+use crate::network::pointnet::interpolate_features;
 use crate::network::pool::max_pool;
 use crate::network::sampling::SamplingError;
 

@@ -27,7 +27,7 @@ use burn::tensor::{DType, TensorData};
 use burn_flex::FlexTensor;
 use rayon::prelude::*;
 
-use crate::network::norm::F32Rows;
+use crate::network::fused::F32Rows;
 
 /// Sets per block of parallel work.
 const SETS_PER_TASK: usize = 16;

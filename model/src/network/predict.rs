@@ -12,7 +12,6 @@ use pairs::math::{Matrix3, Vector3};
 use pairs::segments::complete_prediction;
 use pairs::{PairInput, Prediction};
 
-use crate::inference::labels::{segment_pair, HardLabelParams};
 use crate::network::input::{points_tensor, PairTensors, Prepared};
 use crate::network::sampling::{distance2, three_nn, SamplingError};
 use crate::network::PartInductionNet;
@@ -282,27 +281,5 @@ impl PartInductionNet {
         prediction.segment_probs =
             Some(probs.iter().map(|row| order.iter().map(|&o| row[o]).collect()).collect());
         Ok(prediction)
-    }
-
-    /// The segmentation module on a given flow with the graph-cut labels of
-    /// [`segment_pair`]: the network as one more segmenter over any flow source (the
-    /// evaluator's `net-seg` rows).
-    pub fn segment_flow_with(
-        &self,
-        input: &PairInput,
-        flow: &[Vector3],
-        params: &HardLabelParams,
-    ) -> Result<Prediction, SamplingError> {
-        let probs = self.soft_segments(input, flow)?;
-        let seg = segment_pair(&input.p.points, &input.q.points, &probs, flow, params);
-        Ok(Prediction {
-            flow: None,
-            segments_p: seg.labels_p,
-            segments_q: seg.labels_q,
-            motions: seg.motions,
-            corr_mask: None,
-            segment_probs: Some(seg.probs),
-            joints: None,
-        })
     }
 }

@@ -8,7 +8,7 @@ use std::io::BufWriter;
 use std::path::{Path, PathBuf};
 
 use mcap::records::MessageHeader;
-use mcap::{Compression, WriteOptions, Writer};
+use mcap::Writer;
 
 use super::index::{IndexRow, SetIndexRow};
 use super::manifest::{
@@ -22,6 +22,7 @@ use super::viz::{
 };
 use crate::atomic::{at, partial_path, replace_with};
 use crate::error::DatasetError;
+use crate::mcap_files::reproducible_writer;
 use crate::pair::Pair;
 use crate::scan::{PairImages, Scan, ScanImages, IMAGES_DIR};
 use crate::set::Set;
@@ -34,8 +35,6 @@ pub const SETS_FILE: &str = "sets.mcap";
 pub const VIZ_VIEWS_TOPIC: &str = "/viz/views";
 /// Name of the index file in a dataset folder.
 pub const INDEX_FILE: &str = "index.csv";
-/// Uncompressed chunk size: bounds the writer's memory whatever the dataset size.
-const CHUNK_BYTES: u64 = 4 << 20;
 /// Nanoseconds between consecutive pairs, so that Foxglove shows one pair per second.
 const PAIR_PERIOD_NS: u64 = 1_000_000_000;
 
@@ -98,15 +97,7 @@ impl DatasetWriter {
         }
         let mcap_path = partial(dir, records);
         let file = File::create(&mcap_path).map_err(DatasetError::io(&mcap_path))?;
-        // One compression thread: multithreaded zstd output depends on the machine's core
-        // count, and the files must be byte-identical everywhere.
-        let mut mcap = WriteOptions::new()
-            .compression(Some(Compression::Zstd))
-            .compression_threads(0)
-            .chunk_size(Some(CHUNK_BYTES))
-            .profile("")
-            .create(BufWriter::new(file))
-            .map_err(DatasetError::mcap(&mcap_path))?;
+        let mut mcap = reproducible_writer(file).map_err(DatasetError::mcap(&mcap_path))?;
         let channels = if records == SETS_FILE {
             add_set_channels(&mut mcap)
         } else {

@@ -8,7 +8,7 @@ use std::io::BufWriter;
 use std::path::{Path, PathBuf};
 
 use mcap::records::MessageHeader;
-use mcap::{Compression, WriteOptions, Writer};
+use mcap::Writer;
 
 use super::schema::{
     PredictionHeader, PredictionRecord, HEADER_SCHEMA, HEADER_TOPIC, PREDICTIONS_VERSION,
@@ -16,9 +16,7 @@ use super::schema::{
 };
 use crate::atomic::partial_path;
 use crate::error::PredictionsError;
-
-/// Uncompressed chunk size: bounds the writer's memory whatever the number of pairs.
-const CHUNK_BYTES: u64 = 4 << 20;
+use crate::mcap_files::reproducible_writer;
 
 /// Writes one prediction file, record by record. Dropped before
 /// [`finish`](PredictionWriter::finish), it removes its partial file.
@@ -36,14 +34,7 @@ impl PredictionWriter {
     pub fn create(path: &Path, header: &PredictionHeader) -> Result<Self, PredictionsError> {
         let partial = partial_path(path);
         let file = File::create(&partial).map_err(PredictionsError::io(&partial))?;
-        // One compression thread, so that the bytes do not depend on the machine.
-        let mut mcap = WriteOptions::new()
-            .compression(Some(Compression::Zstd))
-            .compression_threads(0)
-            .chunk_size(Some(CHUNK_BYTES))
-            .profile("")
-            .create(BufWriter::new(file))
-            .map_err(PredictionsError::mcap(&partial))?;
+        let mut mcap = reproducible_writer(file).map_err(PredictionsError::mcap(&partial))?;
         let meta = |schema: &str| {
             BTreeMap::from([
                 ("schema".to_string(), schema.to_string()),

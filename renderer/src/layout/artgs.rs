@@ -12,7 +12,7 @@
 //! - `gt/trans.json`, `gt/{start,end}/<state>{,_static,_dynamic[_<i>]}_rotate.ply`.
 //!
 //! The world is PARIS's (Z up, the object centred with its largest half extent 1,
-//! `gt::WorldFrame`, recorded in `frame.json`): ArtGS does not normalise the scene and
+//! `gt::normalised_frame`, recorded in `frame.json`): ArtGS does not normalise the scene and
 //! initialises in [-1.3, 1.3]^3 (`dataset_readers.py:228`). `arguments/*.json` at the
 //! output's root hold the entries ArtGS's per-scene registry needs (parts per object in
 //! `num_slots.json`), to merge into its own `arguments/`.
@@ -23,7 +23,7 @@ use image::ExtendedColorType;
 use pairs::math::Real;
 use serde_json::{json, Map, Value};
 
-use super::gt::{part_joints, trans_json, write_meshes};
+use super::gt::{camera_to_world, part_joints, trans_json, write_meshes, FrameFile};
 use super::native::depth_units;
 use super::paris::{write_rgba, STATES};
 use super::{each_view, u16_bytes, write_json, write_png};
@@ -58,7 +58,7 @@ pub fn write_object(
                     json!({
                         "file_path": format!("{}/train/rgba/{i:04}.png", STATES[s]),
                         "time": s as f64,
-                        "transform_matrix": frame.camera_to_world(c),
+                        "transform_matrix": camera_to_world(&frame, c),
                     })
                 })
             })
@@ -76,7 +76,7 @@ pub fn write_object(
         let base = dir.join(STATES[state]).join("train");
         let file = format!("{view:04}.png");
         write_rgba(&base.join("rgba").join(&file), images)?;
-        let depth = depth_units(&images.depth, 1e-3 / frame.scale);
+        let depth = depth_units(&images.depth, 1e-3 / frame.scale as Real);
         write_png(
             &base.join("depth").join(&file),
             &u16_bytes(&depth),
@@ -85,7 +85,7 @@ pub fn write_object(
             ExtendedColorType::L16,
         )
     })?;
-    write_json(&dir.join("frame.json"), &frame)?;
+    write_json(&dir.join("frame.json"), &FrameFile::of(&frame))?;
     let gt = dir.join("gt");
     write_json(&gt.join("trans.json"), &trans_json(&frame, &part_joints(job)))?;
     write_meshes(job, &frame, &gt, &[(0, "start"), (1, "end")])?;

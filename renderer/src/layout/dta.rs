@@ -21,7 +21,7 @@ use std::path::Path;
 
 use image::ExtendedColorType;
 
-use super::gt::{part_joints, trans_json, write_meshes};
+use super::gt::{camera_to_world, part_joints, trans_json, write_meshes};
 use super::native::depth_units;
 use super::{each_view, u16_bytes, write_bytes, write_json, write_png};
 use crate::shade::rgb8;
@@ -43,7 +43,7 @@ pub fn write_object(
     let mut yml = String::new();
     for time in 0..2 {
         for (i, camera) in job.cameras.iter().enumerate() {
-            let m = frame.camera_to_world(camera);
+            let m = camera_to_world(&frame, camera);
             let numbers: Vec<String> = m.iter().flatten().map(|x| format!("{x:.9}")).collect();
             let _ = write!(
                 yml,

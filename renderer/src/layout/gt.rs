@@ -8,7 +8,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 use pairs::math::{Isometry3, Matrix3, Point3, Real, Rotation3, UnitQuaternion, Vector3};
-use pairs::renders::{ObjectTruth, RenderJoint, TrueJoint};
+use pairs::renders::{ObjectTruth, RenderJoint, TrueJoint, WorldFrame};
 use pairs::{JointKind, PartId};
 use serde::Serialize;
 use serde_json::{json, Value};
@@ -18,74 +18,45 @@ use crate::job::{bounds, posed_mesh};
 use crate::{JointStates, RenderError, RenderJob};
 use scanner::camera::Camera;
 
-/// The map from our object frame (Y up) to a layout's world: `x' = scale * C * (x - centre)`
-/// with `C = [[1,0,0],[0,0,-1],[0,1,0]]` when `z_up` (PARIS's `preprocess.py:245-252`),
-/// else the identity.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize)]
-pub struct WorldFrame {
-    /// `scale`.
-    pub scale: Real,
-    /// `centre`, our object frame.
-    pub centre: [Real; 3],
-    /// Whether the world is Z-up.
-    pub z_up: bool,
+/// The layout's world frame centred on the object's bounding box over every state and
+/// scaled so that its largest half extent is 1 (PARIS's `preprocess.py:245-252` when
+/// `z_up`). The frame's fields hold `Real` values, so [`WorldFrame::point`] is exact.
+pub fn normalised_frame(job: &RenderJob, z_up: bool) -> WorldFrame {
+    let (lo, hi) = bounds(&job.scenes);
+    let half = (hi - lo).max() * 0.5;
+    let centre: [Real; 3] = nalgebra::center(&lo, &hi).coords.into();
+    WorldFrame { scale: f64::from(1.0 / half.max(1e-9)), centre: centre.map(f64::from), z_up }
 }
 
-impl WorldFrame {
-    /// Our object frame, unchanged.
-    pub fn identity() -> Self {
-        Self { scale: 1.0, centre: [0.0; 3], z_up: false }
-    }
-
-    /// Centred on the object's bounding box over every state and scaled so that its
-    /// largest half extent is 1.
-    pub fn normalised(job: &RenderJob, z_up: bool) -> Self {
-        let (lo, hi) = bounds(&job.scenes);
-        let half = (hi - lo).max() * 0.5;
-        Self { scale: 1.0 / half.max(1e-9), centre: nalgebra::center(&lo, &hi).coords.into(), z_up }
-    }
-
-    /// The rotation `C`.
-    pub fn axes(&self) -> Matrix3 {
-        if self.z_up {
-            Matrix3::new(1.0, 0.0, 0.0, 0.0, 0.0, -1.0, 0.0, 1.0, 0.0)
-        } else {
-            Matrix3::identity()
-        }
-    }
-
-    /// A point in the world.
-    pub fn point(&self, p: &Point3) -> Point3 {
-        Point3::from(self.axes() * (p - Point3::from(self.centre)) * self.scale)
-    }
-
-    /// A direction in the world.
-    pub fn direction(&self, d: &Vector3) -> Vector3 {
-        self.axes() * d
-    }
-
-    /// A camera-to-world matrix in the world, with OpenGL camera axes (x right, y up,
-    /// looking along -z): our OpenCV camera's y and z columns negated.
-    pub fn camera_to_world(&self, camera: &Camera) -> [[f64; 4]; 4] {
-        let r = self.axes()
-            * camera.pose.rotation.to_rotation_matrix().matrix()
-            * Matrix3::from_diagonal(&Vector3::new(1.0, -1.0, -1.0));
-        let t = self.point(&camera.centre());
-        std::array::from_fn(|i| match i {
-            3 => [0.0, 0.0, 0.0, 1.0],
-            _ => [r[(i, 0)], r[(i, 1)], r[(i, 2)], t[i]].map(f64::from),
-        })
-    }
+/// A camera-to-world matrix in `frame`, with OpenGL camera axes (x right, y up, looking
+/// along -z): our OpenCV camera's y and z columns negated.
+pub fn camera_to_world(frame: &WorldFrame, camera: &Camera) -> [[f64; 4]; 4] {
+    let r = frame.axes()
+        * camera.pose.rotation.to_rotation_matrix().matrix()
+        * Matrix3::from_diagonal(&Vector3::new(1.0, -1.0, -1.0));
+    let t = frame.point(&camera.centre());
+    std::array::from_fn(|i| match i {
+        3 => [0.0, 0.0, 0.0, 1.0],
+        _ => [r[(i, 0)], r[(i, 1)], r[(i, 2)], t[i]].map(f64::from),
+    })
 }
 
-/// The record of a frame (`ground_truth.json`).
-impl WorldFrame {
-    /// As `pairs` writes it.
-    pub fn record(&self) -> pairs::renders::WorldFrame {
-        pairs::renders::WorldFrame {
-            scale: f64::from(self.scale),
-            centre: self.centre.map(f64::from),
-            z_up: self.z_up,
+/// `frame.json` of the PARIS and ArtGS layouts: the frame's scale and centre as the `Real`
+/// values they are.
+#[derive(Debug, Serialize)]
+pub struct FrameFile {
+    scale: Real,
+    centre: [Real; 3],
+    z_up: bool,
+}
+
+impl FrameFile {
+    /// The file of `frame`.
+    pub fn of(frame: &WorldFrame) -> Self {
+        Self {
+            scale: frame.scale as Real,
+            centre: frame.centre.map(|c| c as Real),
+            z_up: frame.z_up,
         }
     }
 }
@@ -115,8 +86,8 @@ pub fn object_truth(job: &RenderJob, frame: &WorldFrame, folder: &str) -> Object
         folder: folder.into(),
         object_id: job.object.object_id,
         category: job.object.object.category.clone(),
-        world: frame.record(),
-        diagonal: f64::from((hi - lo).norm() * frame.scale),
+        world: *frame,
+        diagonal: f64::from((hi - lo).norm() * frame.scale as Real),
         joints,
     }
 }
@@ -160,7 +131,7 @@ fn in_world(frame: &WorldFrame, joint: &JointStates) -> (Point3, Vector3, [Real;
     let axis = frame.direction(&Vector3::from(joint.axis[0]));
     let unit = match joint.kind {
         JointKind::Revolute => 1.0,
-        JointKind::Prismatic => frame.scale,
+        JointKind::Prismatic => frame.scale as Real,
     };
     (pivot, axis, [joint.value[0] * unit, joint.value[1] * unit])
 }

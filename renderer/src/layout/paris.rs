@@ -17,7 +17,7 @@
 //! (`models/geometry.py:100`): our Y-up object frame is mapped by `x' = s C (x - c)`, with
 //! `C = [[1,0,0],[0,0,-1],[0,1,0]]` (PARIS's `preprocess.py:245-252`), `c` the centre of
 //! the object's bounding box over both states and `s` the scale that brings its largest
-//! half extent to 1 (`gt::WorldFrame`); `s` and `c` are in `frame.json` beside
+//! half extent to 1 (`gt::normalised_frame`); `s` and `c` are in `frame.json` beside
 //! `trans.json`. Training views are
 //! the configured cameras; `val` and `test` share a turntable of views at 30 degrees
 //! elevation, the same in both states (`--predict` uses the start state's test cameras for
@@ -30,11 +30,12 @@ use pairs::math::{Point3, Real, Vector3};
 use rayon::prelude::*;
 use serde_json::{json, Map, Value};
 
-use super::gt::{part_joints, trans_json, write_meshes, WorldFrame};
+use super::gt::{camera_to_world, part_joints, trans_json, write_meshes, FrameFile};
 use super::{each_view, write_json, write_png};
 use crate::shade::rgb8;
 use crate::shade::ViewImages;
 use crate::{RenderConfig, RenderError, RenderJob};
+use pairs::renders::WorldFrame;
 use scanner::camera::Camera;
 
 /// State folders, in state order.
@@ -84,7 +85,7 @@ pub fn write_object(
     let load = out.join("load").join(&source);
     let data = out.join("data").join(&source).join("textured_objs");
 
-    let turntable = turntable(job, &Point3::from(frame.centre));
+    let turntable = turntable(job, &Point3::from(frame.centre.map(|c| c as Real)));
     for state in STATES {
         let dir = load.join(state);
         write_json(&dir.join("camera_train.json"), &camera_json(&frame, &job.cameras))?;
@@ -106,7 +107,7 @@ pub fn write_object(
         Ok::<_, RenderError>(())
     })?;
     write_json(&data.join("trans.json"), &trans_json(&frame, &joints))?;
-    write_json(&data.join("frame.json"), &frame)?;
+    write_json(&data.join("frame.json"), &FrameFile::of(&frame))?;
     write_meshes(job, &frame, &data, &[(0, "start")])?;
     Ok(source)
 }
@@ -150,7 +151,7 @@ fn camera_json(frame: &WorldFrame, cameras: &[Camera]) -> Value {
         json!([[k.fx, 0.0, k.cx + 0.5], [0.0, k.fy, k.cy + 0.5], [0.0, 0.0, 1.0]]),
     );
     for (i, c) in cameras.iter().enumerate() {
-        map.insert(format!("{i:04}"), json!(frame.camera_to_world(c)));
+        map.insert(format!("{i:04}"), json!(camera_to_world(frame, c)));
     }
     Value::Object(map)
 }

@@ -6,8 +6,8 @@ use rand::Rng as _;
 
 use super::geometry::{unit, Block, Face};
 use super::params::AssemblyParams;
-use super::root::Shape;
 use super::segments::Segment;
+use super::shape::Shape;
 use super::visibility::{shift, SHIFT};
 use crate::seed::Rng;
 

@@ -14,6 +14,7 @@ mod motions;
 mod params;
 mod root;
 mod segments;
+mod shape;
 mod sweeps;
 mod visibility;
 

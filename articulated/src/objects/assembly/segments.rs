@@ -5,7 +5,7 @@
 use pairs::math::{Isometry3, Point3, Real, Translation3, Vector3};
 
 use super::geometry::{unit, Block, Face};
-use super::root::Shape;
+use super::shape::Shape;
 use crate::mesh::Mesh;
 
 /// One primitive of the assembly.

@@ -5,8 +5,8 @@
 use pairs::math::{Point3, Real, Vector3};
 
 use super::geometry::{Block, Face, EPS};
-use super::root::Shape;
 use super::segments::Segment;
+use super::shape::Shape;
 
 /// Segment `i` and every segment standing on it, directly or not.
 pub(super) fn subtree(segments: &[Segment], i: usize) -> impl Iterator<Item = usize> + '_ {

@@ -1,4 +1,5 @@
 use super::*;
+use crate::network::fused::*;
 use crate::network::rng;
 use burn::module::Param;
 use burn::nn::{LayerNormConfig, LinearConfig};

@@ -1,4 +1,6 @@
 use super::*;
+use crate::network::mlp::*;
+use crate::network::norm::linear;
 use crate::network::rng;
 use rand::{Rng, SeedableRng};
 

@@ -9,7 +9,7 @@ use burn::prelude::*;
 use burn::tensor::activation;
 
 use crate::network::config::NetworkConfig;
-use crate::network::pointnet::{Head, SharedMlp};
+use crate::network::mlp::{Head, SharedMlp};
 use crate::network::pool::max_pool;
 
 /// What the RPEN outputs for `steps` steps.

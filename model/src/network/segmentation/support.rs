@@ -6,7 +6,7 @@
 use burn::prelude::*;
 
 use crate::network::config::NetworkConfig;
-use crate::network::pointnet::{Head, SharedMlp};
+use crate::network::mlp::{Head, SharedMlp};
 use crate::network::pool::max_pool;
 use crate::network::segmentation::hypotheses::Hypotheses;
 
