@@ -15,6 +15,18 @@ use pairs::{Method, MethodError, PairInput, Prediction};
 use renderer::layout::{write_render, Layout};
 use renderer::{RenderConfig, RenderJob};
 
+/// Renders the first `objects` test objects into `root` (native layout, two states, `views`
+/// cameras of `width` x `height`).
+fn render(root: &std::path::Path, objects: u32, width: u32, height: u32, views: u32) {
+    let config = RenderConfig { width, height, views, states: 2, ..RenderConfig::default() };
+    let objects = GeneratorConfig { objects, ..GeneratorConfig::default() };
+    let jobs = built_in_objects(&objects)
+        .expect("objects")
+        .into_iter()
+        .map(|o| RenderJob::new(&config, 0, o, None, Layout::Native));
+    write_render(&config, 0, jobs, Layout::Native, root, false, &|_| {}).expect("render");
+}
+
 struct Fails;
 
 impl Method for Fails {
@@ -31,15 +43,8 @@ impl Method for Fails {
 fn the_oracle_finds_the_true_joints_and_a_failing_row_none() {
     let dir = tempfile::tempdir().expect("tmp");
     let root = dir.path().join("render");
-    let config =
-        RenderConfig { width: 160, height: 120, views: 6, states: 2, ..RenderConfig::default() };
     // Six objects: the desk lamp (object 5) has parts on moving parts.
-    let objects = GeneratorConfig { objects: 6, ..GeneratorConfig::default() };
-    let jobs = built_in_objects(&objects)
-        .expect("objects")
-        .into_iter()
-        .map(|o| RenderJob::new(&config, 0, o, None, Layout::Native));
-    write_render(&config, 0, jobs, Layout::Native, &root, false, &|_| {}).expect("render");
+    render(&root, 6, 160, 120, 6);
     let mut registry = Registry::new();
     registry.oracle();
     registry.method(Arc::new(Fails), Board::Both, "fails v1");
@@ -82,15 +87,8 @@ fn a_render_folder_given_with_dataset_is_scored_on_its_joints() {
     use evaluator::datasets::DatasetSpec;
 
     let dir = tempfile::tempdir().expect("tmp");
-    let render = dir.path().join("mine");
-    let config =
-        RenderConfig { width: 96, height: 72, views: 4, states: 2, ..RenderConfig::default() };
-    let objects = GeneratorConfig { objects: 2, ..GeneratorConfig::default() };
-    let jobs = built_in_objects(&objects)
-        .expect("objects")
-        .into_iter()
-        .map(|o| RenderJob::new(&config, 0, o, None, Layout::Native));
-    write_render(&config, 0, jobs, Layout::Native, &render, false, &|_| {}).expect("render");
+    let mine = dir.path().join("mine");
+    render(&mine, 2, 96, 72, 4);
     let mut registry = Registry::new();
     registry.oracle();
     let reports = dir.path().join("reports");
@@ -104,7 +102,7 @@ fn a_render_folder_given_with_dataset_is_scored_on_its_joints() {
         gallery_pairs: 0,
         validation: Vec::new(),
     };
-    let spec = DatasetSpec::user("myrender", &render);
+    let spec = DatasetSpec::user("myrender", &mine);
     evaluate(&registry, &[spec], &options, &NoProgress).expect("the render is scored");
     let board = std::fs::read_to_string(reports.join(RENDER_JOINTS_FILE)).expect("joints board");
     let rows: Vec<Vec<&str>> = board
